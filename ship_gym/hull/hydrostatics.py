@@ -71,7 +71,7 @@ def wetted_triangles(
         (n, 3, 3) wet triangles [m] in the earth frame and (n, 3) depths of their vertices [m].
     """
     tri = _posed_triangles(mesh, heave, heel, trim)
-    wet, depth, _ = clip_triangles(tri, tri[:, :, 2])
+    wet, depth, _, _ = clip_triangles(tri, tri[:, :, 2])
     return wet, depth
 
 

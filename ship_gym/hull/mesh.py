@@ -279,11 +279,8 @@ def mesh_from_polygons(
     merge_tolerance : float
         Vertices closer than this [m] (on a grid of this size) are merged.
     """
-    vertices = np.asarray(vertices, dtype=float)
-    key = np.round(vertices / merge_tolerance).astype(np.int64)
-    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
-    inverse = inverse.ravel()
-    new_vertices = vertices[first]
+    vertices = np.asarray(vertices, dtype=float).reshape(-1, 3)
+    inverse, new_vertices = _merge_close_vertices(vertices, merge_tolerance)
     faces: list[list[int]] = []
     for poly in polygons:
         p = [int(inverse[i]) for i in poly]
@@ -310,21 +307,38 @@ def mesh_from_polygons(
                 faces.append(chunk)
                 k += 2
     f = np.array(faces, dtype=np.int64).reshape(-1, 4)
+    if len(f):
+        # remove zero-area panels (collinear triangles produced by degenerate input)
+        probe = PanelMesh(new_vertices, f, name)
+        f = f[probe.areas > 1e-12 * max(float(probe.areas.max()), 1e-300)]
     used = np.unique(f)
     remap = -np.ones(len(new_vertices), dtype=np.int64)
     remap[used] = np.arange(len(used))
-    mesh = PanelMesh(new_vertices[used], remap[f], name)
-    # remove zero-area panels (collinear triangles produced by degenerate input)
-    keep = mesh.areas > 1e-12 * max(float(np.mean(mesh.areas)), 1e-300)
-    if not np.all(keep):
-        mesh = PanelMesh(mesh.vertices, mesh.faces[keep], name)
-    return mesh
+    return PanelMesh(new_vertices[used], remap[f], name)
+
+
+def _merge_close_vertices(vertices: np.ndarray, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
+    """Cluster vertices closer than ``tolerance`` [m]: (index of each vertex's representative
+    in the returned array, representatives). Distance-based (k-d tree), so points on either side
+    of a rounding-grid boundary still merge."""
+    if len(vertices) == 0:
+        return np.zeros(0, dtype=np.int64), vertices
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    pairs = cKDTree(vertices).query_pairs(tolerance, output_type="ndarray")
+    n = len(vertices)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, label = connected_components(graph, directed=False)
+    _, first, inverse = np.unique(label, return_index=True, return_inverse=True)
+    return inverse.ravel().astype(np.int64), vertices[first]
 
 
 # ---------------------------------------------------------------------- clipping and integrals
 def clip_triangles(
-    triangles: np.ndarray, depth: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    triangles: np.ndarray, depth: np.ndarray, values: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Keep the submerged part of each triangle, cut where the submergence changes sign.
 
     The submergence (depth below the free surface, positive in the water) is taken as linear
@@ -337,6 +351,9 @@ def clip_triangles(
         (n, 3, 3) vertex coordinates [m].
     depth : numpy.ndarray
         (n, 3) submergence of each vertex [m]; wet where ≥ 0.
+    values : numpy.ndarray, optional
+        (n, 3) a field that vanishes on the free surface (e.g. the pressure): carried with the
+        original vertices, 0 on the cut. Defaults to ``depth``.
 
     Returns
     -------
@@ -346,11 +363,15 @@ def clip_triangles(
         (m, 3) submergence at their vertices [m] (0 on the cut).
     owner : numpy.ndarray
         (m,) index of the parent triangle.
+    wet_values : numpy.ndarray
+        (m, 3) ``values`` at the wet vertices (0 on the cut).
     """
+    vals = depth if values is None else values
+    fields = np.stack([depth, vals], axis=-1)  # (n, 3, 2)
     wet = depth >= 0.0
     n_wet = wet.sum(axis=1)
     out_t = [triangles[n_wet == 3]]
-    out_d = [depth[n_wet == 3]]
+    out_f = [fields[n_wet == 3]]
     out_o = [np.flatnonzero(n_wet == 3)]
     for n_case in (1, 2):
         sel = np.flatnonzero(n_wet == n_case)
@@ -361,26 +382,29 @@ def clip_triangles(
         odd = np.argmax(w if n_case == 1 else ~w, axis=1)
         order = (odd[:, None] + np.arange(3)[None, :]) % 3
         t = np.take_along_axis(triangles[sel], order[:, :, None], axis=1)
-        d = np.take_along_axis(depth[sel], order, axis=1)
+        f = np.take_along_axis(fields[sel], order[:, :, None], axis=1)
         a, b, c = t[:, 0], t[:, 1], t[:, 2]
-        da, db, dc = d[:, 0:1], d[:, 1:2], d[:, 2:3]
+        fa, fb, fc = f[:, 0], f[:, 1], f[:, 2]
+        da, db, dc = fa[:, :1], fb[:, :1], fc[:, :1]
         p_ab = a + (b - a) * (da / (da - db))
         p_ac = a + (c - a) * (da / (da - dc))
-        zero = np.zeros_like(da)
+        zero = np.zeros_like(fa)
         if n_case == 1:
             out_t.append(np.stack([a, p_ab, p_ac], axis=1))
-            out_d.append(np.concatenate([da, zero, zero], axis=1))
+            out_f.append(np.stack([fa, zero, zero], axis=1))
             out_o.append(sel)
         else:
             out_t.append(np.stack([p_ab, b, c], axis=1))
-            out_d.append(np.concatenate([zero, db, dc], axis=1))
+            out_f.append(np.stack([zero, fb, fc], axis=1))
             out_t.append(np.stack([p_ab, c, p_ac], axis=1))
-            out_d.append(np.concatenate([zero, dc, zero], axis=1))
+            out_f.append(np.stack([zero, fc, zero], axis=1))
             out_o.extend([sel, sel])
+    fields_out = np.concatenate(out_f).reshape(-1, 3, 2)
     return (
         np.concatenate(out_t).reshape(-1, 3, 3),
-        np.concatenate(out_d).reshape(-1, 3),
+        fields_out[:, :, 0],
         np.concatenate(out_o).astype(np.int64),
+        fields_out[:, :, 1],
     )
 
 
