@@ -1,0 +1,111 @@
+"""The one protocol every force model follows, and the per-evaluation context they share.
+
+A force model returns a generalised force (Fx, Fy, Fz, Mx, My, Mz) in **body axes about the body
+origin O** (:mod:`ship_gym.conventions`) for the instantaneous state. Models with memory carry it
+either
+
+* as extra first-order ODE states ``z`` (``n_states > 0``) integrated with the ship by the same
+  integrator (``evaluate`` returns their derivative) — e.g. the state-space radiation memory; or
+* as a history updated only on accepted steps in :meth:`ForceModel.commit` — e.g. the direct
+  convolution of the retardation function.
+
+Everything that several models need at one evaluation (rotation matrix, wave phasors at the ship,
+the steady forward speed, the rudder/fin commands) is computed once by the simulator and passed in
+a :class:`ForceContext`.
+
+Kring–Huang–Sclavounos (their eq. 3): the instantaneous (infinite-frequency) added mass is kept on
+the left-hand side of the equations of motion; a model that contributes such a term declares it in
+:attr:`ForceModel.added_mass` and must then *not* include it in its force. Holloway's lumped mode is
+the exception: the model puts −A ν̇ₑ in its force with ν̇ₑ the extrapolated acceleration given in
+the context.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass
+class ForceContext:
+    """Quantities shared by all force models at one evaluation (built by the simulator).
+
+    Attributes
+    ----------
+    t : float
+        Time [s].
+    eta : numpy.ndarray
+        (6,) position of O (NED) [m] and zyx Euler angles [rad].
+    nu : numpy.ndarray
+        (6,) body velocities (u, v, w, p, q, r) [m/s, rad/s].
+    rotation : numpy.ndarray
+        (3, 3) body-to-earth rotation matrix R(φ, θ, ψ).
+    forward_speed : float
+        Steady forward speed U [m/s] about which radiation is linearised (perturbation velocity
+        ν − (U, 0, 0, 0, 0, 0)).
+    wave_phasor : numpy.ndarray or None
+        (n,) complex amplitudes cⱼ(t) of the incident components [m], ramp included
+        (:meth:`ship_gym.waves.WaveField.phasor`); None in calm water.
+    acceleration_extrapolated : numpy.ndarray or None
+        (6,) extrapolated ν̇ₑ for Holloway's lumped mode, else None.
+    commands : dict
+        Actuator commands (rudder angle [rad], fin angles [rad], shaft speed [rad/s], …).
+    """
+
+    t: float
+    eta: np.ndarray
+    nu: np.ndarray
+    rotation: np.ndarray
+    forward_speed: float = 0.0
+    wave_phasor: np.ndarray | None = None
+    acceleration_extrapolated: np.ndarray | None = None
+    commands: dict = field(default_factory=dict)
+
+
+class ForceModel:
+    """Base class of force models (subclass and override; all methods have safe defaults).
+
+    Attributes
+    ----------
+    name : str
+        Key of this force in the simulator's per-force breakdown.
+    n_states : int
+        Number of extra first-order states the model integrates with the ship.
+    added_mass : numpy.ndarray or None
+        (6, 6) instantaneous added mass this model moves to the left-hand side [kg, kg·m,
+        kg·m²], or None.
+    """
+
+    name: str = "force"
+    n_states: int = 0
+    added_mass: np.ndarray | None = None
+
+    def initial_states(self) -> np.ndarray:
+        """Initial values of the model's ODE states (length :attr:`n_states`)."""
+        return np.zeros(self.n_states)
+
+    def reset(self, t0: float, ctx: ForceContext) -> None:
+        """Forget all memory; called when a simulation (re)starts at time ``t0``."""
+
+    def evaluate(self, ctx: ForceContext, states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Generalised force and state derivatives.
+
+        Parameters
+        ----------
+        ctx : ForceContext
+            The shared evaluation context.
+        states : numpy.ndarray
+            The model's own ODE states (length :attr:`n_states`).
+
+        Returns
+        -------
+        force : numpy.ndarray
+            (6,) force [N] and moment about O [N·m] in body axes.
+        states_dot : numpy.ndarray
+            (n_states,) time derivative of the states.
+        """
+        raise NotImplementedError
+
+    def commit(self, ctx: ForceContext, states: np.ndarray) -> None:
+        """Record an accepted step (state at the *end* of the step); default: nothing."""

@@ -1,0 +1,302 @@
+"""Sanity checks of a hydrodynamic database before it feeds the time-domain model.
+
+:func:`validate_database` gathers every problem it finds and raises one :class:`DatabaseError`
+listing them all; on success it returns a report of measured quantities (for the CLI and logs).
+
+What is checked (forward-speed-free, deep-water database in our body frame):
+
+* schema: required variables and their dimensions, the six DOF labels in order, frame attribute;
+* finite values (wave forces may be NaN only at ω = 0 and ω = ∞);
+* radiation damping: B_ii(ω) ≥ −tol · max_ω B_ii (energy is radiated away, never absorbed);
+  B(0) = 0 where present;
+* symmetry of A(ω) and B(ω): without forward speed the radiation matrices are symmetric
+  (Green's theorem). Asymmetry of a pair is measured relative to the geometric mean of the two
+  diagonal scales, |X_ij − X_ji| / sqrt(max|X_ii| max|X_jj|), which is unit-consistent for
+  mixed translation/rotation pairs;
+* frequency coverage: ω strictly increasing, at least ``min_frequencies`` finite points, A(∞)
+  present, and ω_max at least ``min_omega_ratio`` (default 1.5) times the highest heave/roll/
+  pitch natural frequency, so that the damping peak and its shoulder are computed; what lies
+  beyond ω_max must be extrapolated by the kernel code, and the report gives the tail ratio
+  B_ii(ω_max) / max B_ii and ω_max·T_n to judge it. (The S175 with its 1440-panel mesh resolves
+  up to 1.67 rad/s ≈ 1.98 × its heave natural frequency, with heave/pitch tail ratios 0.22/0.45.)
+* hydrostatics: C33, C44, C55 > 0 (a negative value usually means a z-up frame slipped through or
+  the loading condition is unstable); the inertia matrix is symmetric positive definite.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from ship_gym.conventions import BODY_FRAME, DOF_NAMES
+
+HEAVE, ROLL, PITCH = 2, 3, 4
+
+
+class DatabaseError(ValueError):
+    """A hydrodynamic database failed validation; the message lists every problem found."""
+
+
+_REQUIRED = {
+    "added_mass": ("omega", "influenced_dof", "radiating_dof"),
+    "radiation_damping": ("omega", "influenced_dof", "radiating_dof"),
+    "excitation_force": ("omega", "wave_direction", "influenced_dof"),
+    "hydrostatic_stiffness": ("influenced_dof", "radiating_dof"),
+    "inertia_matrix": ("influenced_dof", "radiating_dof"),
+}
+_OPTIONAL = {
+    "diffraction_force": ("omega", "wave_direction", "influenced_dof"),
+    "Froude_Krylov_force": ("omega", "wave_direction", "influenced_dof"),
+}
+
+
+def _negligible(diag_scale: np.ndarray, rel: float = 1e-6) -> np.ndarray:
+    """DOFs whose diagonal scale is negligible against the largest of the same kind.
+
+    Translations (0-2) and rotations (3-5) are compared separately (different units). A body of
+    revolution has, e.g., no yaw added mass or damping: its yaw entries are numerical noise and
+    must not be judged relative to themselves.
+    """
+    out = np.zeros(6, dtype=bool)
+    for block in (slice(0, 3), slice(3, 6)):
+        top = float(np.max(diag_scale[block]))
+        out[block] = diag_scale[block] <= rel * top
+    return out
+
+
+def _natural_frequency(
+    omega: np.ndarray, a_ii: np.ndarray, a_inf: float, m_ii: float, c_ii: float
+) -> float:
+    """Undamped natural frequency ω_n = sqrt(C / (M + A(ω_n))) by fixed-point iteration."""
+    if c_ii <= 0.0 or m_ii + a_inf <= 0.0:
+        return float("nan")
+    w = np.sqrt(c_ii / (m_ii + a_inf))
+    for _ in range(50):
+        a = np.interp(w, omega, a_ii, left=a_ii[0], right=a_inf)
+        w_new = np.sqrt(c_ii / max(m_ii + a, np.finfo(float).tiny))
+        if abs(w_new - w) < 1e-10 * w:
+            return float(w_new)
+        w = 0.5 * (w + w_new)
+    return float(w)
+
+
+def validate_database(
+    ds: xr.Dataset,
+    *,
+    rtol_symmetry: float = 0.05,
+    damping_tolerance: float = 0.01,
+    min_frequencies: int = 10,
+    min_omega_ratio: float = 1.5,
+    require_infinite: bool = True,
+) -> dict[str, Any]:
+    """Validate a hydrodynamic database; raise :class:`DatabaseError` listing every problem.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Database in ship_gym's body frame (schema in :mod:`ship_gym.hydro.database`).
+    rtol_symmetry : float
+        Largest accepted relative asymmetry of A and B (see module notes).
+    damping_tolerance : float
+        Largest accepted negative diagonal damping, relative to max_ω B_ii of the same DOF.
+    min_frequencies : int
+        Smallest accepted number of finite frequencies.
+    min_omega_ratio : float
+        ω_max must reach this multiple of the highest heave/roll/pitch natural frequency.
+    require_infinite : bool
+        Require the ω = ∞ entry (A(∞)), needed by the retardation kernels.
+
+    Returns
+    -------
+    dict
+        Measured quantities: ``n_frequencies``, ``omega_min``, ``omega_max`` [rad/s],
+        ``has_zero_frequency``, ``has_infinite_frequency``, ``wave_directions_deg``,
+        ``max_asymmetry_added_mass``, ``max_asymmetry_damping``, ``min_damping_ratio``
+        (per DOF), ``natural_periods`` [s] and ``omega_max_times_period`` (heave, roll, pitch),
+        ``damping_tail_ratio`` (per DOF), ``C33``, ``C44``, ``C55``, ``GM_T``, ``GM_L`` [m] (from
+        C44, C55 and the mass when available).
+
+    Raises
+    ------
+    DatabaseError
+        With one line per problem found.
+    """
+    if not isinstance(ds, xr.Dataset):
+        raise DatabaseError(f"expected an xarray.Dataset, got {type(ds).__name__}")
+    problems: list[str] = []
+    report: dict[str, Any] = {}
+
+    # --- schema -----------------------------------------------------------------------------
+    for name, dims in {**_REQUIRED, **_OPTIONAL}.items():
+        if name not in ds:
+            if name in _REQUIRED:
+                problems.append(f"missing required variable {name!r} with dims {dims}")
+            continue
+        if set(ds[name].dims) != set(dims):
+            problems.append(f"variable {name!r} has dims {ds[name].dims}; expected {dims}")
+    for dim in ("influenced_dof", "radiating_dof"):
+        if dim in ds.coords:
+            labels = tuple(str(v) for v in ds[dim].values)
+            if labels != DOF_NAMES:
+                problems.append(f"coordinate {dim!r} is {labels}; expected {DOF_NAMES}")
+    frame = ds.attrs.get("frame")
+    if frame != BODY_FRAME:
+        problems.append(
+            f"attrs['frame'] is {frame!r}; expected the ship_gym body frame (convert capytaine/"
+            "WAMIT data with ship_gym.hydro.frames or open_database)"
+        )
+    if problems:  # the numeric checks below need a sound schema
+        raise DatabaseError("invalid hydrodynamic database:\n  - " + "\n  - ".join(problems))
+
+    dofs = list(DOF_NAMES)
+    sel = {"influenced_dof": dofs, "radiating_dof": dofs}
+    omega = ds["omega"].values.astype(float)
+    a_all = ds["added_mass"].sel(sel).transpose("omega", *sel).values
+    b_all = ds["radiation_damping"].sel(sel).transpose("omega", *sel).values
+    finite = np.isfinite(omega) & (omega > 0.0)
+    has_zero = bool(np.any(omega == 0.0))
+    has_inf = bool(np.any(np.isinf(omega)))
+    w = omega[finite]
+    a, b = a_all[finite], b_all[finite]
+    report.update(
+        n_frequencies=int(finite.sum()),
+        omega_min=float(w.min()) if w.size else float("nan"),
+        omega_max=float(w.max()) if w.size else float("nan"),
+        has_zero_frequency=has_zero,
+        has_infinite_frequency=has_inf,
+        wave_directions_deg=np.rad2deg(ds["wave_direction"].values).round(6).tolist(),
+    )
+
+    # --- frequency axis ---------------------------------------------------------------------
+    if np.any(np.isnan(omega)) or np.any(omega < 0.0):
+        problems.append(f"omega holds NaN or negative values: {omega}")
+    elif np.any(np.diff(omega) <= 0.0):
+        problems.append("omega is not strictly increasing")
+    if finite.sum() < min_frequencies:
+        problems.append(
+            f"only {int(finite.sum())} finite frequencies; expected at least {min_frequencies}"
+        )
+    if require_infinite and not has_inf:
+        problems.append("A(inf) is missing: no omega = inf entry (needed by the kernels)")
+
+    # --- finite values ----------------------------------------------------------------------
+    for name, arr in (("added_mass", a_all), ("radiation_damping", b_all)):
+        bad = ~np.isfinite(arr)
+        if np.any(bad):
+            k = np.argwhere(bad)[0]
+            problems.append(
+                f"{name} has {int(bad.sum())} non-finite value(s), first at omega = "
+                f"{omega[k[0]]:.4g} rad/s, ({dofs[k[1]]}, {dofs[k[2]]})"
+            )
+    for name in ("excitation_force", *_OPTIONAL):
+        if name not in ds:
+            continue
+        f = ds[name].transpose("omega", ...).values[finite]
+        bad = ~np.isfinite(f)
+        if np.any(bad):
+            k = np.argwhere(bad)[0]
+            problems.append(
+                f"{name} has {int(bad.sum())} non-finite value(s) at finite frequencies, first "
+                f"at omega = {w[k[0]]:.4g} rad/s"
+            )
+    for name in ("hydrostatic_stiffness", "inertia_matrix"):
+        if not np.all(np.isfinite(ds[name].values)):
+            problems.append(f"{name} has non-finite values")
+
+    # --- damping ----------------------------------------------------------------------------
+    min_ratio: dict[str, float] = {}
+    tail: dict[str, float] = {}
+    if w.size and np.all(np.isfinite(b)):
+        tiny = _negligible(np.max(np.abs(np.einsum("kii->ki", b)), axis=0))
+        for i, dof in enumerate(dofs):
+            bii = b[:, i, i]
+            peak = float(np.max(np.abs(bii)))
+            if peak == 0.0 or tiny[i]:
+                min_ratio[dof], tail[dof] = 0.0, 0.0
+                continue
+            min_ratio[dof] = float(bii.min() / peak)
+            tail[dof] = float(abs(bii[np.argmax(w)]) / peak)
+            if bii.min() < -damping_tolerance * peak:
+                k = int(np.argmin(bii))
+                problems.append(
+                    f"negative radiation damping B[{dof},{dof}] = {bii[k]:.4g} at omega = "
+                    f"{w[k]:.4g} rad/s ({bii[k] / peak:.3g} of its maximum; tolerance "
+                    f"-{damping_tolerance})"
+                )
+    if has_zero:
+        b0 = b_all[omega == 0.0][0]
+        if np.any(np.abs(b0) > 1e-9 * max(float(np.abs(b).max(initial=0.0)), 1e-300)):
+            problems.append("radiation damping at omega = 0 is not zero")
+    report["min_damping_ratio"] = min_ratio
+    report["damping_tail_ratio"] = tail
+
+    # --- symmetry ---------------------------------------------------------------------------
+    def asymmetry(x: np.ndarray) -> tuple[float, tuple[str, str]]:
+        if not np.all(np.isfinite(x)) or x.size == 0:
+            return float("nan"), ("", "")
+        d2 = np.max(np.abs(np.einsum("kii->ki", x)), axis=0)
+        d = np.sqrt(d2)
+        scale = np.maximum(np.outer(d, d), np.finfo(float).tiny)
+        r = np.max(np.abs(x - np.swapaxes(x, 1, 2)), axis=0) / scale
+        skip = _negligible(d2)
+        r[skip, :] = 0.0
+        r[:, skip] = 0.0
+        i, j = np.unravel_index(np.argmax(r), r.shape)
+        return float(r[i, j]), (dofs[i], dofs[j])
+
+    for name, x in (("added_mass", a_all[np.isfinite(omega)]), ("radiation_damping", b)):
+        r, pair = asymmetry(x)
+        report[f"max_asymmetry_{'added_mass' if name == 'added_mass' else 'damping'}"] = r
+        if r > rtol_symmetry:
+            problems.append(
+                f"{name} is not symmetric: |X_ij - X_ji| reaches {r:.3g} of the diagonal scale "
+                f"for ({pair[0]}, {pair[1]}) (tolerance {rtol_symmetry}); a zero-speed database "
+                "must be symmetric"
+            )
+
+    # --- hydrostatics and inertia -------------------------------------------------------------
+    c = ds["hydrostatic_stiffness"].sel(sel).values.astype(float)
+    m = ds["inertia_matrix"].sel(sel).values.astype(float)
+    for i, label in ((HEAVE, "C33"), (ROLL, "C44"), (PITCH, "C55")):
+        report[label] = float(c[i, i])
+        if not c[i, i] > 0.0:
+            problems.append(
+                f"{label} = {c[i, i]:.6g} is not positive (hydrostatic stiffness of "
+                f"{dofs[i]}); a z-up frame or an unstable loading condition?"
+            )
+    if np.all(np.isfinite(m)):
+        if not np.allclose(m, m.T, rtol=0.0, atol=1e-9 * np.abs(m).max()):
+            problems.append("inertia_matrix is not symmetric")
+        elif np.any(np.linalg.eigvalsh(m) <= 0.0):
+            problems.append("inertia_matrix is not positive definite")
+    mass = float(m[0, 0]) if np.isfinite(m[0, 0]) else float("nan")
+    g = float(ds.attrs.get("g", np.nan))
+    report["GM_T"] = float(c[ROLL, ROLL] / (mass * g)) if mass > 0 and g > 0 else float("nan")
+    report["GM_L"] = float(c[PITCH, PITCH] / (mass * g)) if mass > 0 and g > 0 else float("nan")
+
+    # --- natural periods and coverage ---------------------------------------------------------
+    periods: dict[str, float] = {}
+    w_times_t: dict[str, float] = {}
+    if w.size >= 2 and np.all(np.isfinite(a)):
+        a_inf_all = a_all[np.isinf(omega)][0] if has_inf else a[-1]
+        w_n_max = 0.0
+        for i in (HEAVE, ROLL, PITCH):
+            wn = _natural_frequency(w, a[:, i, i], float(a_inf_all[i, i]), m[i, i], c[i, i])
+            periods[dofs[i]] = float(2.0 * np.pi / wn) if np.isfinite(wn) else float("nan")
+            w_times_t[dofs[i]] = float(w.max() * 2.0 * np.pi / wn) if np.isfinite(wn) else np.nan
+            if np.isfinite(wn):
+                w_n_max = max(w_n_max, wn)
+        if w_n_max > 0.0 and w.max() < min_omega_ratio * w_n_max:
+            problems.append(
+                f"omega_max = {w.max():.4g} rad/s is below {min_omega_ratio} x the highest "
+                f"natural frequency {w_n_max:.4g} rad/s: the retardation kernels would be "
+                "truncated"
+            )
+    report["natural_periods"] = periods
+    report["omega_max_times_period"] = w_times_t
+
+    if problems:
+        raise DatabaseError("invalid hydrodynamic database:\n  - " + "\n  - ".join(problems))
+    return report

@@ -1,0 +1,424 @@
+"""Hydrodynamic databases: schema, NetCDF storage, loading, and small accessors.
+
+Schema (every database built by :mod:`ship_gym.hydro.bem`, imported by
+:mod:`ship_gym.hydro.wamit` or read by :func:`open_database`)
+-------------------------------------------------------------------------------------------
+An :class:`xarray.Dataset` in ship_gym's **body frame** (:mod:`ship_gym.conventions`: x forward,
+y starboard, z down, origin O amidships on the design waterline) with capytaine's names and axes:
+
+=========================  ==========================================  ======================
+variable                   dims                                        units
+=========================  ==========================================  ======================
+``added_mass``             (omega, influenced_dof, radiating_dof)      kg, kg·m, kg·m²
+``radiation_damping``      (omega, influenced_dof, radiating_dof)      kg/s, kg·m/s, kg·m²/s
+``excitation_force``       (omega, wave_direction, influenced_dof)     N/m, N·m/m (complex)
+``diffraction_force``      (omega, wave_direction, influenced_dof)     (complex, optional)
+``Froude_Krylov_force``    (omega, wave_direction, influenced_dof)     (complex, optional)
+``hydrostatic_stiffness``  (influenced_dof, radiating_dof)             N/m, N, N·m
+``inertia_matrix``         (influenced_dof, radiating_dof)             kg, kg·m, kg·m²
+=========================  ==========================================  ======================
+
+* ``influenced_dof`` / ``radiating_dof``: the strings ``DOF_NAMES`` = Surge, Sway, Heave, Roll,
+  Pitch, Yaw, in that order. A_ij is the force in DOF i due to the acceleration of DOF j.
+* ``omega`` [rad/s], increasing. The zero- and infinite-frequency limits are stored **on the same
+  axis**, as ``omega[0] = 0`` and ``omega[-1] = inf`` (NetCDF stores IEEE inf): there only
+  ``added_mass`` (A(0), A(∞)) and ``radiation_damping`` (0) are defined and the wave forces are
+  NaN. :func:`split_frequencies` separates them. Optional coordinates along ``omega``:
+  ``period`` [s], ``wavenumber`` [rad/m].
+* ``wave_direction`` β [rad] in [0, 2π), ship_gym's heading convention (0 following seas, π head
+  seas, π/2 waves travelling toward starboard). Wave forces are complex amplitudes per unit
+  wave amplitude [N/m, N·m/m], time convention x(t) = Re(X e^{−iωt}), phase referred to a crest
+  at O at t = 0.
+* Moments and rotations are about O. Forward speed zero, deep water.
+* ``attrs``: ``frame`` (= :data:`~ship_gym.conventions.BODY_FRAME`, the marker that the data
+  are in our frame), ``time_convention``, ``wave_heading``, ``rho`` [kg/m³], ``g`` [m/s²],
+  ``source``, ``created``, and where known ``mesh_name``, ``n_panels``, ``symmetry``, ``lid_z``,
+  ``mass``, ``cog``, ``omega_limits``.
+
+File format
+-----------
+NetCDF-4 (HDF5; written with h5netcdf when h5py is installed, otherwise with netCDF4). Complex
+variables are split into two real variables ``<name>_real`` and ``<name>_imag`` (tagged with the
+attribute ``complex_part``), so the file opens in any NetCDF reader. Files are written atomically
+(temporary file in the same directory, then :func:`os.replace`): a failed save never corrupts an
+existing file. :func:`open_database`
+also reads capytaine's own NetCDF export (``export_dataset`` / ``separate_complex_values``, with a
+``complex`` dimension holding ``re``/``im``), which is in capytaine's z-up frame and is converted
+with :mod:`ship_gym.hydro.frames`.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import tempfile
+from importlib import resources
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+import xarray as xr
+
+from ship_gym.conventions import BODY_FRAME, DOF_NAMES
+from ship_gym.hydro import frames
+
+FORMAT_VERSION: int = 1
+"""Value of ``attrs["ship_gym_format"]`` written by :func:`save_database`."""
+
+_COMPLEX_TAG = "complex_part"
+_DOF_DIMS = ("influenced_dof", "radiating_dof")
+_ATTR_SCALARS = (str, int, float, np.integer, np.floating)
+
+
+# ------------------------------------------------------------------------------ save / open
+def netcdf_engine() -> str:
+    """xarray engine used to write NetCDF-4: ``"h5netcdf"`` (needs h5py) or ``"netcdf4"``."""
+    if importlib.util.find_spec("h5netcdf") and importlib.util.find_spec("h5py"):
+        return "h5netcdf"
+    if importlib.util.find_spec("netCDF4"):
+        return "netcdf4"
+    raise ValueError(
+        "no NetCDF-4 writer available: install netCDF4, or h5netcdf together with h5py"
+    )
+
+
+def _check_attrs(attrs: dict, where: str) -> None:
+    for key, value in attrs.items():
+        ok = isinstance(value, _ATTR_SCALARS) and not isinstance(value, bool | np.bool_)
+        if isinstance(value, np.ndarray | list | tuple):
+            arr = np.asarray(value)
+            ok = arr.ndim == 1 and arr.dtype.kind in "iufU"
+        if not ok:
+            raise ValueError(
+                f"cannot store attribute {key!r} of {where} in NetCDF: value {value!r} of type "
+                f"{type(value).__name__}; expected a string, a number or a 1-D array of numbers"
+            )
+
+
+def _split_complex(ds: xr.Dataset) -> xr.Dataset:
+    out = ds.copy()
+    for name in list(ds.data_vars):
+        da = ds[name]
+        if np.iscomplexobj(da.values):
+            for part, values in (("real", da.real), ("imag", da.imag)):
+                new = xr.DataArray(values.values, dims=da.dims, attrs=dict(da.attrs))
+                new.attrs[_COMPLEX_TAG] = part
+                out[f"{name}_{part}"] = new
+            out = out.drop_vars(name)
+    return out
+
+
+def save_database(ds: xr.Dataset, path: str | os.PathLike) -> Path:
+    """Write a database to NetCDF-4, atomically.
+
+    Complex variables become ``<name>_real`` / ``<name>_imag``; string coordinates are stored as
+    strings; ``inf`` frequencies are stored as IEEE inf.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Database (any frame; :func:`open_database` relies on ``attrs["frame"]``).
+    path : str or os.PathLike
+        Output file (conventionally ``*.nc``); its directory must exist.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    ValueError
+        If ``ds`` is not a Dataset or has attributes NetCDF cannot store. Any error leaves an
+        existing file at ``path`` untouched and removes the temporary file.
+    """
+    if not isinstance(ds, xr.Dataset):
+        raise ValueError(f"expected an xarray.Dataset to save, got {type(ds).__name__}")
+    path = Path(path)
+    if not path.parent.is_dir():
+        raise FileNotFoundError(f"directory {str(path.parent)!r} does not exist")
+    _check_attrs(ds.attrs, "the dataset")
+    for name, var in ds.variables.items():
+        _check_attrs(var.attrs, f"variable {name!r}")
+    out = _split_complex(ds)
+    for name in list(out.coords):
+        if out[name].dtype.kind in "OU":
+            out = out.assign_coords({name: out[name].astype(str)})
+    out.attrs["ship_gym_format"] = FORMAT_VERSION
+    fd, tmp_name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    os.close(fd)
+    try:
+        out.to_netcdf(tmp_name, engine=netcdf_engine(), format="NETCDF4")
+        os.replace(tmp_name, path)
+    except BaseException:
+        try:
+            os.unlink(tmp_name)
+        except OSError:
+            pass
+        raise
+    return path
+
+
+def _merge_ours(ds: xr.Dataset) -> xr.Dataset:
+    out = ds.copy()
+    for name in list(ds.data_vars):
+        if not name.endswith("_real"):
+            continue
+        base = name[: -len("_real")]
+        imag = f"{base}_imag"
+        tagged = ds[name].attrs.get(_COMPLEX_TAG) == "real"
+        if imag not in ds or (not tagged and base in ds):
+            continue
+        re, im = ds[name], ds[imag]
+        attrs = {k: v for k, v in re.attrs.items() if k != _COMPLEX_TAG}
+        out = out.drop_vars([name, imag])
+        out[base] = xr.DataArray(re.values + 1j * im.values, dims=re.dims, attrs=attrs)
+    return out
+
+
+def _merge_capytaine(ds: xr.Dataset) -> xr.Dataset:
+    """capytaine's ``merge_complex_values``: a ``complex`` dimension with labels re/im."""
+    out = ds.copy()
+    labels = [str(v) for v in ds["complex"].values]
+    if sorted(labels) != ["im", "re"]:
+        raise ValueError(f"unexpected 'complex' coordinate {labels}; expected ['re', 'im']")
+    for name in list(ds.data_vars):
+        da = ds[name]
+        if "complex" in da.dims:
+            dims = tuple(d for d in da.dims if d != "complex")
+            values = da.sel(complex="re").values + 1j * da.sel(complex="im").values
+            out[name] = xr.DataArray(values, dims=dims, attrs=dict(da.attrs))
+    return out.drop_vars("complex")
+
+
+def open_database(path: str | os.PathLike) -> xr.Dataset:
+    """Read a database written by :func:`save_database`, or a capytaine NetCDF export.
+
+    The file is read into memory and closed. capytaine-format files (split along a ``complex``
+    dimension) are merged back to complex values and, unless ``attrs["frame"]`` says they are
+    already in ship_gym's body frame, converted from capytaine's z-up frame with
+    :func:`ship_gym.hydro.frames.dataset_from_capytaine`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        NetCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+        The database in our body frame, with complex wave forces and string DOF coordinates.
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` does not exist.
+    ValueError
+        If the file declares a frame that is neither ours nor capytaine's.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"hydrodynamic database file {str(path)!r} not found")
+    with xr.open_dataset(path) as f:
+        ds = f.load()
+    ds.attrs.pop("ship_gym_format", None)
+    ds = _merge_capytaine(ds) if "complex" in ds.dims else _merge_ours(ds)
+    for name in list(ds.coords):
+        if ds[name].dtype.kind in "OSU":
+            ds = ds.assign_coords({name: np.asarray(ds[name].values, dtype=str)})
+    frame = ds.attrs.get("frame")
+    if frame == BODY_FRAME:
+        return ds
+    if frame not in (None, frames.CAPYTAINE_FRAME):
+        raise ValueError(
+            f"{str(path)!r}: attrs['frame'] = {frame!r} is neither the ship_gym body frame nor "
+            "capytaine's frame; cannot tell how to convert it"
+        )
+    return frames.dataset_from_capytaine(ds)
+
+
+def bundled_database_path(name: str) -> Path:
+    """Path of a database bundled with ship_gym: ``ship_gym/data/<name>/<name>_hydro.nc``."""
+    return Path(str(resources.files("ship_gym").joinpath("data", name, f"{name}_hydro.nc")))
+
+
+def load_database(name_or_path: str | os.PathLike) -> xr.Dataset:
+    """Load a bundled database by name (e.g. ``"s175"``) or any database file by path.
+
+    Parameters
+    ----------
+    name_or_path : str or os.PathLike
+        A bare name without directory or ``.nc`` suffix selects the bundled file
+        ``ship_gym/data/<name>/<name>_hydro.nc``; anything else is a path.
+
+    Raises
+    ------
+    FileNotFoundError
+        If the file does not exist (for a bundled name: it has not been built yet).
+    """
+    text = os.fspath(name_or_path)
+    is_name = (
+        isinstance(name_or_path, str)
+        and os.sep not in text
+        and "/" not in text
+        and not text.endswith(".nc")
+        and not Path(text).exists()
+    )
+    if not is_name:
+        return open_database(text)
+    if not text or not text.replace("_", "").replace("-", "").isalnum():
+        raise ValueError(f"invalid bundled database name {text!r}")
+    path = bundled_database_path(text)
+    if not path.is_file():
+        raise FileNotFoundError(
+            f"bundled hydrodynamic database {text!r} is not available: expected {str(path)!r}. "
+            "It is built by the database script in scripts/ (compute_hull_database + "
+            "save_database); run it first, or pass a path to a database file"
+        )
+    return open_database(path)
+
+
+# ------------------------------------------------------------------------------ accessors
+def split_frequencies(
+    ds: xr.Dataset, *, require_infinite: bool = False
+) -> tuple[xr.Dataset, xr.DataArray | None, xr.DataArray | None]:
+    """Separate the finite frequencies from the ω = 0 and ω = ∞ limits.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Database with an ``omega`` axis.
+    require_infinite : bool
+        Raise if A(∞) is missing.
+
+    Returns
+    -------
+    finite : xarray.Dataset
+        ``ds`` restricted to 0 < ω < ∞.
+    added_mass_zero : xarray.DataArray or None
+        A(0) (influenced_dof, radiating_dof) [kg, kg·m, kg·m²], or None if absent.
+    added_mass_infinite : xarray.DataArray or None
+        A(∞), or None if absent.
+
+    Raises
+    ------
+    ValueError
+        If ``ds`` has no ``omega`` axis, or A(∞) is missing and ``require_infinite``.
+    """
+    if "omega" not in ds.dims:
+        raise ValueError("database has no 'omega' dimension")
+    w = ds["omega"].values
+    finite = ds.isel(omega=np.flatnonzero(np.isfinite(w) & (w > 0.0)))
+    a0 = ainf = None
+    if "added_mass" in ds:
+        if np.any(w == 0.0):
+            a0 = ds["added_mass"].isel(omega=int(np.flatnonzero(w == 0.0)[0]), drop=True)
+        if np.any(np.isinf(w)):
+            ainf = ds["added_mass"].isel(omega=int(np.flatnonzero(np.isinf(w))[0]), drop=True)
+    if require_infinite and ainf is None:
+        raise ValueError(
+            "database has no infinite-frequency added mass (omega = inf entry); recompute it "
+            "with infinite_frequency=True or import a WAMIT .1 file with PER = 0 rows"
+        )
+    return finite, a0, ainf
+
+
+class HydroArrays(NamedTuple):
+    """Plain NumPy view of a database in DOF order (SI units, our body frame).
+
+    Attributes
+    ----------
+    omega : (n,) finite frequencies [rad/s]
+    added_mass, radiation_damping : (n, 6, 6)
+    added_mass_zero, added_mass_infinite : (6, 6) or None
+    wave_direction : (m,) headings [rad]
+    excitation_force : (n, m, 6) complex, per unit amplitude
+    hydrostatic_stiffness, inertia_matrix : (6, 6) or None
+    """
+
+    omega: np.ndarray
+    added_mass: np.ndarray
+    radiation_damping: np.ndarray
+    added_mass_zero: np.ndarray | None
+    added_mass_infinite: np.ndarray | None
+    wave_direction: np.ndarray
+    excitation_force: np.ndarray
+    hydrostatic_stiffness: np.ndarray | None
+    inertia_matrix: np.ndarray | None
+
+
+def as_arrays(ds: xr.Dataset) -> HydroArrays:
+    """NumPy arrays of a database, DOFs in :data:`~ship_gym.conventions.DOF_NAMES` order."""
+    dofs = list(DOF_NAMES)
+    ds = ds.sel({d: dofs for d in _DOF_DIMS if d in ds.dims})
+    finite, a0, ainf = split_frequencies(ds)
+
+    def mat(name: str) -> np.ndarray | None:
+        if name not in ds:
+            return None
+        return ds[name].transpose("influenced_dof", "radiating_dof").values.astype(float)
+
+    return HydroArrays(
+        omega=finite["omega"].values.astype(float),
+        added_mass=finite["added_mass"].transpose("omega", *_DOF_DIMS).values,
+        radiation_damping=finite["radiation_damping"].transpose("omega", *_DOF_DIMS).values,
+        added_mass_zero=None if a0 is None else a0.transpose(*_DOF_DIMS).values,
+        added_mass_infinite=None if ainf is None else ainf.transpose(*_DOF_DIMS).values,
+        wave_direction=ds["wave_direction"].values.astype(float),
+        excitation_force=finite["excitation_force"]
+        .transpose("omega", "wave_direction", "influenced_dof")
+        .values,
+        hydrostatic_stiffness=mat("hydrostatic_stiffness"),
+        inertia_matrix=mat("inertia_matrix"),
+    )
+
+
+def mirror_headings(ds: xr.Dataset, *, rtol: float = 1e-2) -> xr.Dataset:
+    """Complete the headings of a port/starboard symmetric hull to the full circle.
+
+    For a hull symmetric about y = 0, the wave forces at β' = 2π − β follow from those at β by
+    the reflection y ↦ −y: F_i(2π − β) = m_i F_i(β) with m = (1, −1, 1, −1, 1, −1). Headings
+    already present are kept; new ones are added for β in (0, π) (and π ↦ π, 0 ↦ 0 map onto
+    themselves).
+
+    Raises
+    ------
+    ValueError
+        If the added mass shows the hull is not symmetric (couplings between surge/heave/pitch and
+        sway/roll/yaw larger than ``rtol`` of the diagonal scale).
+    """
+    if "wave_direction" not in ds.dims:
+        raise ValueError("database has no 'wave_direction' dimension")
+    finite, _, _ = split_frequencies(ds)
+    a = finite["added_mass"].sel(influenced_dof=list(DOF_NAMES), radiating_dof=list(DOF_NAMES))
+    a = np.abs(a.values)
+    diag = np.sqrt(np.einsum("kii->i", a) / max(len(a), 1))
+    scale = np.outer(diag, diag)
+    m = frames.mirror_signs()
+    odd = np.outer(m, m) < 0
+    ratio = np.max(a[:, odd] / np.maximum(scale[odd], np.finfo(float).tiny))
+    if ratio > rtol:
+        raise ValueError(
+            f"hull does not look port/starboard symmetric: symmetric-antisymmetric added-mass "
+            f"couplings reach {ratio:.3g} of the diagonal scale (> rtol = {rtol})"
+        )
+    beta = ds["wave_direction"].values
+    new = np.mod(2.0 * np.pi - beta, 2.0 * np.pi)
+    have = np.any(np.isclose(new[:, None], beta[None, :], rtol=0.0, atol=1e-9), axis=1)
+    if np.all(have):
+        return ds
+    wave_vars = [v for v in ds.data_vars if "wave_direction" in ds[v].dims]
+    extra = ds[wave_vars].isel(wave_direction=np.flatnonzero(~have))
+    sign = xr.DataArray(m, dims=("influenced_dof",), coords={"influenced_dof": list(DOF_NAMES)})
+    sign = sign.sel(influenced_dof=extra["influenced_dof"].values)
+    for v in wave_vars:
+        if "influenced_dof" in extra[v].dims:
+            extra[v] = (extra[v] * sign).transpose(*extra[v].dims).assign_attrs(ds[v].attrs)
+    extra = extra.assign_coords(wave_direction=new[~have])
+    merged = xr.concat([ds[wave_vars], extra], dim="wave_direction").sortby("wave_direction")
+    out = ds.drop_vars(wave_vars).drop_dims("wave_direction", errors="ignore")
+    out = out.assign_coords(wave_direction=merged["wave_direction"])
+    for v in wave_vars:
+        out[v] = merged[v]
+    out.attrs = dict(ds.attrs)
+    return out
