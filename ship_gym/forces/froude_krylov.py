@@ -32,8 +32,11 @@ from typing import Literal
 import numba as nb
 import numpy as np
 
+from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.forces.fastmath import exp_neg, sincos
+from ship_gym.hull.hull import Hull
 from ship_gym.hull.mesh import PanelMesh, clip_triangles, pressure_resultant
+from ship_gym.waves.wave_field import WaveField
 
 Method = Literal["fast", "reference"]
 
@@ -418,3 +421,55 @@ def _reference(
     wet, _, _, p_wet = clip_triangles(rel[idx], depth[idx], pressure[idx])
     force, moment = pressure_resultant(wet, p_wet, np.zeros(3))
     return np.concatenate([force, moment])
+
+
+class FroudeKrylovHydrostatics(ForceModel):
+    """Force model: nonlinear incident-wave + hydrostatic pressure on the instantaneous hull.
+
+    Parameters
+    ----------
+    hull : Hull
+        Hull with its closed mesh (to the deck).
+    wave_field : WaveField or None
+        Incident waves (None: calm water, pure hydrostatics).
+    method : {"fast", "reference"}
+        Kernel implementation.
+
+    Notes
+    -----
+    The force is returned in body axes about O: F_b = Rᵀ F_e, M_b = Rᵀ M_e.
+    """
+
+    name = "froude_krylov_hydrostatic"
+
+    def __init__(self, hull: Hull, wave_field: WaveField | None = None, *, method: Method = "fast"):
+        if method not in ("fast", "reference"):
+            raise ValueError(f"method must be 'fast' or 'reference', got {method!r}")
+        self.hull = hull
+        self.method: Method = method
+        self.panels = HullPanels.from_mesh(hull.mesh)
+        self.wave_field = wave_field
+        if wave_field is None or wave_field.n_components == 0:
+            self.waves = WaveComponents.from_arrays(np.zeros(1), np.zeros(1))
+        else:
+            self.waves = WaveComponents.from_arrays(wave_field.wavenumber, wave_field.direction)
+        self._calm = np.zeros(self.waves.wavenumber.shape, dtype=np.complex128)
+
+    def evaluate(self, ctx: ForceContext, states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Body-axis force and moment about O (see :func:`froude_krylov_hydrostatic`)."""
+        phasor = self._calm if ctx.wave_phasor is None else ctx.wave_phasor
+        f = froude_krylov_hydrostatic(
+            self.panels,
+            self.waves,
+            phasor,
+            ctx.eta[:3],
+            ctx.rotation,
+            rho=self.hull.rho,
+            g=self.hull.g,
+            method=self.method,
+        )
+        rt = ctx.rotation.T
+        return np.concatenate([rt @ f[:3], rt @ f[3:]]), _NO_STATES
+
+
+_NO_STATES = np.zeros(0)
