@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ship_gym.conventions import GRAVITY
+from ship_gym.kinematics import encounter_frequency
 from ship_gym.waves.spectra import frequency_range, jonswap, pierson_moskowitz, spreading_cos2s
 
 __all__ = [
@@ -99,40 +100,6 @@ def omega_to_wavelength(omega: ArrayLike, g: float = GRAVITY) -> NDArray:
     if np.any(~np.isfinite(w)) or np.any(w <= 0.0):
         raise ValueError(f"omega must be finite and > 0 [rad/s]; got {omega!r}")
     return 2.0 * np.pi * g / (w * w)
-
-
-def encounter_frequency(
-    omega: ArrayLike, speed: ArrayLike, beta: ArrayLike, g: float = GRAVITY
-) -> NDArray:
-    """Frequency of encounter of a ship in deep-water waves.
-
-    ω_e = ω − k U cos β = ω − ω² U cos β / g,
-
-    with β = χ − ψ the relative heading (:mod:`ship_gym.conventions`): a ship at
-    (X, Y) = U t (cos ψ, sin ψ) sees the phase ωt − k(X cos χ + Y sin χ) = (ω − kU cos β) t.
-    Following seas (β = 0) lower the frequency (ω_e = ω − kU, negative when the ship overtakes
-    the waves, U > g/ω — the sign is kept), head seas (β = π) raise it, beam seas (β = ±π/2)
-    leave it unchanged. All arguments broadcast.
-
-    Parameters
-    ----------
-    omega : array_like
-        Absolute wave frequency ω [rad/s].
-    speed : array_like
-        Ship speed over ground U [m/s].
-    beta : array_like
-        Relative wave heading β [rad].
-    g : float, optional
-        Gravitational acceleration [m/s²].
-
-    Returns
-    -------
-    numpy.ndarray
-        Signed encounter frequency ω_e [rad/s].
-    """
-    _check_g(g)
-    w = np.asarray(omega, dtype=float)
-    return w - w * w * np.asarray(speed, dtype=float) * np.cos(np.asarray(beta, dtype=float)) / g
 
 
 @dataclass(frozen=True)
