@@ -30,6 +30,7 @@ STAGES = {
     "analysis": 8,
     "cli": 9,
     "cli_hydro": 9,
+    "cli_simulate": 9,
 }
 
 

@@ -1,0 +1,336 @@
+"""Linear wave diffraction force from a zero-speed frequency-domain database.
+
+Phase mapping between our wave phasors and capytaine's complex amplitudes
+------------------------------------------------------------------------
+The wave field (:mod:`ship_gym.waves.wave_field`) gives phasors cⱼ(t) = r(t) aⱼ e^{i(ωⱼt + εⱼ)}
+with the elevation, in earth axes (X north, Y east),
+
+    ζ(X, Y, t) = Re Σⱼ cⱼ(t) e^{−i kⱼ (X cos χⱼ + Y sin χⱼ)}.
+
+Fold the phasor to the ship's origin O = (X_O, Y_O):
+
+    c'ⱼ(t) = cⱼ(t) e^{−i kⱼ (X_O cos χⱼ + Y_O sin χⱼ)},     ζ(O, t) = Re Σⱼ c'ⱼ(t).
+
+A body point at horizontal body coordinates (x, y) lies at X = X_O + x cos ψ − y sin ψ,
+Y = Y_O + x sin ψ + y cos ψ (roll and pitch neglected), so X cos χ + Y sin χ = X_O cos χ +
+Y_O sin χ + x cos β + y sin β with β = χ − ψ, and
+
+    ζ(x, y, t) = Re Σⱼ c'ⱼ(t) e^{−i kⱼ (x cos βⱼ + y sin βⱼ)}
+               = Re Σⱼ conj(c'ⱼ(t)) e^{+i kⱼ (x cos βⱼ + y sin βⱼ)}.
+
+capytaine's incident wave (time convention x(t) = Re(X e^{−iωt}), database ``attrs``) is
+ζ = Re(a_c e^{ik(x cos β + y sin β)} e^{−iωt}) with the diffraction force Re(X_D a_c e^{−iωt}).
+Matching the two term by term: **a_c e^{−iωt} ≡ conj(c'(t))**, i.e. the complex amplitude at O
+is a_c = conj(c'(0)) for a fixed O, and
+
+    F_D(t) = Re Σⱼ X_D(ω'ⱼ, βⱼ) conj(c'ⱼ(t))     (body axes, about O).
+
+Check: one regular wave, ε = 0, ship at rest at the origin: c' = a e^{iωt},
+conj(c') = a e^{−iωt}, F_D = Re(X_D a e^{−iωt}) (tested).
+
+Frequency of the transfer function
+----------------------------------
+With the ship moving, X_O(t) advances and c'ⱼ(t) rotates at the encounter frequency
+ω_e = ω − kU cos β (U = ``ctx.forward_speed``): the time dependence comes out of the folding
+exactly. The transfer function is the **zero-speed** X_D, looked up at
+
+* ``frequency="encounter"`` (default): ω' = ω_e. The common approximation: the hull is
+  assumed to respond to the encountered wave as it would at zero speed to a wave of that
+  frequency, with the relative heading β; no forward-speed correction of the scattered
+  potential (the wavenumber seen by the hull is k(ω), not k(ω_e), a mismatch of this
+  approximation).
+* ``frequency="wave"``: ω' = ω (exact at zero speed).
+
+Negative encounter frequency (following seas, ship overtaking the waves, U cos β > g/ω): the
+folded phasor turns backwards, conj(c'(t)) ∝ e^{+i|ω_e|t}. A real linear system with the
+transfer function H(ω) in the e^{−iωt} convention has H(−ω) = conj(H(ω)), so X_D is taken as
+conj(X_D(|ω_e|, β)): the force is that of the same transfer function applied to the encountered
+signal written with a positive frequency, Re(conj(X_D) conj(c')) = Re(X_D c') (continuous
+through ω_e = 0, where X_D → 0).
+
+Outside the database frequency range (ω_min, ω_max):
+
+* 0 ≤ |ω'| < ω_min: X_D(ω') = X_D(ω_min, β)(ω'/ω_min)². Diffraction vanishes in long waves
+  (the scattered potential is O(ω²); the S175 data follow the ω² law at the lowest frequencies).
+* |ω'| > ω_max: X_D = 0 (``above_range="zero"``, default), or an error (``"raise"``). The
+  attribute :attr:`n_above_range` counts such components. Short waves are weakly felt by a long
+  hull but the force does not vanish physically (reflection in beam seas); with the S175
+  database (ω_max = 1.67 rad/s) this drops encounter frequencies above 1.67 rad/s, e.g. waves
+  shorter than ≈ 0.5 L in head seas at Fn 0.2.
+
+Interpolation and caching
+-------------------------
+The database headings are completed to the full circle by
+:func:`ship_gym.hydro.database.mirror_headings` (port–starboard symmetry) and extended
+periodically; X_D is interpolated bilinearly in (ω, β) on the real and imaginary parts (exact at
+database nodes). The per-component values X_D(ω'ⱼ, βⱼ) are cached and recomputed only when the
+heading ψ has moved by more than ``heading_tolerance_deg`` (default 0.5°) since the last
+update, or U changed: the error is at most ≈ |∂X_D/∂β|·0.5° (< 1 % for 15° data spacing). The
+folding of the phasors to O is exact at every evaluation (n complex exponentials).
+
+Frame
+-----
+The force is in body axes about O, as in the database; the heading enters through β. The rotation
+of the force by roll and pitch is second order (amplitude × angle) in the linear theory and is not
+applied.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from ship_gym.conventions import DOF_NAMES, N_DOF, YAW
+from ship_gym.forces.base import ForceContext, ForceModel
+from ship_gym.hydro.database import mirror_headings, split_frequencies
+from ship_gym.waves.wave_field import WaveField
+
+__all__ = ["Diffraction"]
+
+Frequency = Literal["encounter", "wave"]
+AboveRange = Literal["zero", "raise"]
+
+_TWO_PI = 2.0 * math.pi
+
+
+class Diffraction(ForceModel):
+    """Linear diffraction force F_D(t) = Re Σⱼ X_D(ω'ⱼ, βⱼ) conj(c'ⱼ(t)) (module docstring).
+
+    Parameters
+    ----------
+    database : xarray.Dataset
+        Zero-speed database with ``diffraction_force`` (omega, wave_direction, influenced_dof),
+        complex per unit amplitude [N/m, N·m/m], capytaine's time convention, headings in
+        ship_gym's convention.
+    wave_field : WaveField
+        The incident field (components ωⱼ [rad/s], kⱼ [rad/m], χⱼ [rad]).
+    frequency : {"encounter", "wave"}
+        Frequency at which X_D is looked up.
+    interpolation : {"linear"}
+        Bilinear interpolation in (ω, β).
+    heading_tolerance_deg : float
+        Heading change [deg] that triggers a recomputation of the cached X_D per component.
+    above_range : {"zero", "raise"}
+        Treatment of |ω'| > ω_max.
+
+    Attributes
+    ----------
+    omega : numpy.ndarray
+        (n_ω,) database frequencies [rad/s].
+    wave_direction : numpy.ndarray
+        (n_β,) headings after mirroring, in [0, 2π) [rad].
+    n_above_range : int
+        Components with |ω'| > ω_max at the last cache update.
+    omega_lookup, beta_lookup : numpy.ndarray
+        (n,) signed ω' [rad/s] and β [rad] of the last cache update.
+    """
+
+    name = "diffraction"
+
+    def __init__(
+        self,
+        database: xr.Dataset,
+        wave_field: WaveField,
+        *,
+        frequency: Frequency = "encounter",
+        interpolation: str = "linear",
+        heading_tolerance_deg: float = 0.5,
+        above_range: AboveRange = "zero",
+    ) -> None:
+        if not isinstance(database, xr.Dataset):
+            raise ValueError(
+                f"database must be an xarray.Dataset (ship_gym.hydro.load_database); got "
+                f"{type(database).__name__}"
+            )
+        if "diffraction_force" not in database:
+            raise ValueError(
+                "database has no 'diffraction_force' variable; expected (omega, "
+                "wave_direction, influenced_dof) complex amplitudes per unit wave amplitude"
+            )
+        if not isinstance(wave_field, WaveField):
+            raise ValueError(f"wave_field must be a WaveField; got {type(wave_field).__name__}")
+        if frequency not in ("encounter", "wave"):
+            raise ValueError(f"frequency={frequency!r}; expected 'encounter' or 'wave'")
+        if interpolation != "linear":
+            raise ValueError(f"interpolation={interpolation!r}; expected 'linear' (bilinear)")
+        if above_range not in ("zero", "raise"):
+            raise ValueError(f"above_range={above_range!r}; expected 'zero' or 'raise'")
+        tol = float(heading_tolerance_deg)
+        if not (math.isfinite(tol) and tol >= 0.0):
+            raise ValueError(
+                f"heading_tolerance_deg={heading_tolerance_deg!r}; expected a finite angle ≥ 0 "
+                "[deg]"
+            )
+        self.frequency: str = frequency
+        self.above_range: str = above_range
+        self.wave_field: WaveField = wave_field
+        self._heading_tol = math.radians(tol)
+
+        ds = self._full_circle(database)
+        finite, _, _ = split_frequencies(ds)
+        x = (
+            finite["diffraction_force"]
+            .sel(influenced_dof=list(DOF_NAMES))
+            .transpose("omega", "wave_direction", "influenced_dof")
+            .values.astype(complex)
+        )
+        omega = finite["omega"].values.astype(float)
+        beta = np.mod(finite["wave_direction"].values.astype(float), _TWO_PI)
+        if omega.size < 2:
+            raise ValueError(f"database has {omega.size} finite frequencies; expected ≥ 2")
+        if not np.all(np.isfinite(x)):
+            raise ValueError("diffraction_force contains non-finite values at finite frequencies")
+        order = np.argsort(beta)
+        beta, x = beta[order], x[:, order]
+        if beta.size < 2 or np.any(np.diff(beta) <= 0):
+            raise ValueError(f"wave_direction {beta} must hold ≥ 2 distinct headings")
+        self.omega: NDArray[np.float64] = omega
+        self.wave_direction: NDArray[np.float64] = beta
+        # periodic extension in β: one heading below 0 and one above 2π
+        self._beta = np.concatenate([[beta[-1] - _TWO_PI], beta, [beta[0] + _TWO_PI]])
+        self._table = np.concatenate([x[:, -1:], x, x[:, :1]], axis=1)
+
+        w = wave_field
+        self._kx = np.asarray(w.kx, dtype=float)
+        self._ky = np.asarray(w.ky, dtype=float)
+        self._n = w.n_components
+        self._xd = np.zeros((self._n, N_DOF), dtype=complex)
+        self._psi_ref: float | None = None
+        self._u_ref: float | None = None
+        self.n_above_range: int = 0
+        self.omega_lookup: NDArray[np.float64] = np.zeros(self._n)
+        self.beta_lookup: NDArray[np.float64] = np.zeros(self._n)
+
+    @staticmethod
+    def _full_circle(ds: xr.Dataset) -> xr.Dataset:
+        beta = np.mod(ds["wave_direction"].values.astype(float), _TWO_PI)
+        mirror = np.mod(_TWO_PI - beta, _TWO_PI)
+        have = np.isclose(mirror[:, None], beta[None, :], rtol=0.0, atol=1e-9).any(axis=1)
+        if np.all(have):
+            return ds
+        return mirror_headings(ds)
+
+    # ------------------------------------------------------------------ interpolation
+    def diffraction_transfer(self, omega: ArrayLike, beta: ArrayLike) -> NDArray[np.complex128]:
+        """X_D(ω', β) with the conventions of this model (module docstring).
+
+        Parameters
+        ----------
+        omega : array_like
+            Signed lookup frequencies ω' [rad/s] (negative: conjugated transfer function).
+        beta : array_like
+            Relative headings β [rad], any value (wrapped to [0, 2π)).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex (…, 6) [N/m, N·m/m], broadcast shape of ``omega`` and ``beta``.
+
+        Raises
+        ------
+        ValueError
+            If ``above_range="raise"`` and some |ω'| > ω_max.
+        """
+        w, b = np.broadcast_arrays(np.asarray(omega, dtype=float), np.asarray(beta, dtype=float))
+        shape = w.shape
+        w, b = w.ravel(), np.mod(b.ravel(), _TWO_PI)
+        if not (np.all(np.isfinite(w)) and np.all(np.isfinite(b))):
+            raise ValueError("omega and beta must be finite")
+        aw = np.abs(w)
+        w_min, w_max = self.omega[0], self.omega[-1]
+        above = aw > w_max * (1.0 + 1e-12)
+        if np.any(above) and self.above_range == "raise":
+            raise ValueError(
+                f"lookup frequencies {aw[above]} rad/s exceed the database maximum "
+                f"ω_max = {w_max:.6g} rad/s (above_range='raise')"
+            )
+        # β weights
+        ib = np.clip(np.searchsorted(self._beta, b, side="right") - 1, 0, self._beta.size - 2)
+        fb = (b - self._beta[ib]) / (self._beta[ib + 1] - self._beta[ib])
+        # ω weights (frequencies below ω_min use the ω_min row and the ω² law)
+        wc = np.clip(aw, w_min, w_max)
+        iw = np.clip(np.searchsorted(self.omega, wc, side="right") - 1, 0, self.omega.size - 2)
+        fw = (wc - self.omega[iw]) / (self.omega[iw + 1] - self.omega[iw])
+        t = self._table
+        out = (
+            ((1 - fw) * (1 - fb))[:, None] * t[iw, ib]
+            + ((1 - fw) * fb)[:, None] * t[iw, ib + 1]
+            + (fw * (1 - fb))[:, None] * t[iw + 1, ib]
+            + (fw * fb)[:, None] * t[iw + 1, ib + 1]
+        )
+        low = aw < w_min
+        out[low] *= ((aw[low] / w_min) ** 2)[:, None]
+        out[above] = 0.0
+        neg = w < 0
+        out[neg] = np.conj(out[neg])
+        return out.reshape(*shape, N_DOF)
+
+    def _update(self, psi: float, speed: float) -> None:
+        w = self.wave_field
+        beta = np.mod(np.asarray(w.direction, dtype=float) - psi, _TWO_PI)
+        if self.frequency == "encounter":
+            omega = w.omega - w.wavenumber * speed * np.cos(beta)
+        else:
+            omega = np.asarray(w.omega, dtype=float)
+        self._xd = self.diffraction_transfer(omega, beta)
+        self.omega_lookup = omega
+        self.beta_lookup = beta
+        self.n_above_range = int(np.count_nonzero(np.abs(omega) > self.omega[-1] * (1 + 1e-12)))
+        self._psi_ref = psi
+        self._u_ref = speed
+
+    # ------------------------------------------------------------------ protocol
+    def reset(self, t0: float, ctx: ForceContext) -> None:
+        """Drop the cached per-component transfer functions."""
+        self._psi_ref = None
+        self._u_ref = None
+
+    def evaluate(
+        self, ctx: ForceContext, states: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Diffraction force at ``ctx`` (body axes, about O).
+
+        Parameters
+        ----------
+        ctx : ForceContext
+            Uses ``eta`` (X_O, Y_O [m], ψ [rad]), ``forward_speed`` U [m/s] and
+            ``wave_phasor`` cⱼ(t) [m] (ramp included); when ``wave_phasor`` is None the phasors
+            are taken from :meth:`WaveField.phasor` at ``ctx.t``.
+        states : numpy.ndarray
+            Unused (no states).
+
+        Returns
+        -------
+        force : numpy.ndarray
+            (6,) [N, N·m].
+        states_dot : numpy.ndarray
+            Empty.
+        """
+        empty = np.zeros(0)
+        if self._n == 0:
+            return np.zeros(N_DOF), empty
+        c = ctx.wave_phasor
+        c = self.wave_field.phasor(ctx.t) if c is None else np.asarray(c)
+        if c.shape != (self._n,):
+            raise ValueError(
+                f"ctx.wave_phasor has shape {c.shape}; expected ({self._n},), one phasor per "
+                "component of the wave field"
+            )
+        eta = np.asarray(ctx.eta, dtype=float)
+        if eta.shape != (N_DOF,):
+            raise ValueError(f"ctx.eta has shape {eta.shape}; expected (6,)")
+        psi = float(eta[YAW])
+        speed = float(ctx.forward_speed)
+        if (
+            self._psi_ref is None
+            or speed != self._u_ref
+            or abs((psi - self._psi_ref + math.pi) % _TWO_PI - math.pi) > self._heading_tol
+        ):
+            self._update(psi, speed)
+        folded = c * np.exp(-1j * (self._kx * eta[0] + self._ky * eta[1]))
+        force = (folded.conj() @ self._xd).real
+        return force, empty

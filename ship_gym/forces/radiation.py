@@ -1,0 +1,798 @@
+"""Linear radiation forces from a zero-speed frequency-domain database (Cummins form).
+
+Perturbation velocity
+---------------------
+Radiation is linearised about steady straight-ahead motion at the forward speed U
+(``ForceContext.forward_speed``): the models act on the perturbation velocity
+
+    ν_p = ν − (U, 0, 0, 0, 0, 0)                [m/s, rad/s], body axes.
+
+The database is a **zero-speed** BEM database (``attrs["forward_speed"] = 0``). No forward-speed
+correction of the coefficients is made (no Salvesen–Tuck–Faltinsen U/ω terms, no speed-dependent
+kernels); forward speed enters only through ν_p and, for the constant-coefficient model, through
+the encounter frequency at which the coefficients are taken.
+
+Sign conventions (DESIGN.md §3, :mod:`ship_gym.hydro.retardation`)
+-----------------------------------------------------------------
+Arrays from :func:`ship_gym.hydro.database.as_arrays` are used in the layout
+``added_mass[ω, i, j]``, ``radiation_damping[ω, i, j]``: i the *influenced* DOF (force, output),
+j the *radiating* DOF (velocity, input), i.e. dims (omega, influenced_dof, radiating_dof). The
+kernels K[t, i, j] = (2/π)∫₀^∞ B_ij(ω) cos ωt dω (Matusiak eq. 16) then have the (t, output,
+input) layout of :func:`ship_gym.hydro.state_space.fit_state_space` without any swap.
+
+Cummins / Matusiak eq. 15 with Kring–Huang–Sclavounos' split (their eq. 3):
+
+    F_rad(t) = −A(∞) ν̇(t) − μ(t),      μ(t) = ∫₀^t K(t − τ) ν_p(τ) dτ,
+
+A(∞) going to the left-hand side (:attr:`ForceModel.added_mass`). For a harmonic motion
+ν_p = Re(V̂ e^{−iωt}) (capytaine's time convention) the steady state of μ is
+
+    μ(t) = Re{ ∫₀^∞ K(s) e^{iωs} ds · V̂ e^{−iωt} } = Re{ [B(ω) − iω(A(ω) − A(∞))] V̂ e^{−iωt} }
+
+by Ogilvie's relations B(ω) = ∫₀^∞ K cos ωs ds, ω[A(∞) − A(ω)] = ∫₀^∞ K sin ωs ds; then
+F_rad = Re{(iωA(ω) − B(ω)) V̂ e^{−iωt}} = −A(ω) ν̇ − B(ω) ν, the frequency-domain force.
+
+Models
+------
+:class:`RadiationMemory`
+    Matusiak's case 1 (memory). ``method="convolution"`` is the reference path (trapezoidal
+    convolution over a stored velocity history); ``method="state_space"`` (default) replaces
+    the convolution by a fitted stable linear system integrated with the ship.
+    ``lumped=True`` is Holloway's mode (his eq. 10): −A(∞)ν̇ₑ is put in the force with the
+    extrapolated acceleration ν̇ₑ, and nothing goes to the left-hand side.
+:class:`ConstantCoefficientRadiation`
+    Matusiak's case 2 (his eq. 13–14): constant A and B, no memory.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import warnings
+from collections.abc import Mapping
+from typing import Any, Literal
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import CubicSpline
+
+from ship_gym.conventions import GRAVITY, N_DOF, ROLL, SURGE
+from ship_gym.forces.base import ForceContext, ForceModel
+from ship_gym.hydro.database import HydroArrays, as_arrays
+from ship_gym.hydro.retardation import (
+    KernelDecay,
+    ReconstructionError,
+    RetardationKernels,
+    compute_kernels,
+    kernel_decay,
+    reconstruction_error,
+)
+from ship_gym.hydro.state_space import StateSpaceRadiation, fit_state_space, frequency_fit_error
+from ship_gym.waves.sea_state import encounter_frequency as _encounter_frequency
+
+__all__ = [
+    "DEFAULT_FIT_OPTIONS",
+    "ConstantCoefficientRadiation",
+    "RadiationMemory",
+    "perturbation_velocity",
+    "roll_natural_frequency",
+]
+
+MemoryMethod = Literal["state_space", "convolution"]
+Case = Literal["2a", "2b"]
+Interpolation = Literal["cubic", "linear"]
+
+DEFAULT_FIT_OPTIONS: dict[str, Any] = {
+    "target_error": 5e-3,
+    "max_order": 12,
+    "tol": 1e-2,
+    "zero_tol": 1e-3,
+}
+"""Default options of :func:`ship_gym.hydro.state_space.fit_state_space` used here.
+
+``zero_tol = 1e-3`` drops the pairs that vanish by port–starboard symmetry but carry BEM
+round-off (≈ 2e-5 of the diagonal scale for the S175), which would otherwise get 8–12 states
+each. ``target_error = 5e-3`` (relative L2 error of K per pair) gives 129 states for the S175
+(18 pairs, 3–6 states each; its steady-state roll force is within 1.2 % of the convolution's
+frequency response). ``target_error = 1e-2, max_order = 8`` gives 106 states and ≈ 2 %.
+"""
+
+_FIT_DT = 0.05
+"""Kernel grid [s] of the state-space fit."""
+
+_CACHE: dict[tuple, Any] = {}
+_CACHE_SIZE = 16
+
+
+def _cached(key: tuple, build: Any) -> Any:
+    if key not in _CACHE:
+        if len(_CACHE) >= _CACHE_SIZE:
+            _CACHE.pop(next(iter(_CACHE)))
+        _CACHE[key] = build()
+    return _CACHE[key]
+
+
+def _digest(*arrays: NDArray) -> str:
+    h = hashlib.sha1()
+    for a in arrays:
+        h.update(np.ascontiguousarray(a, dtype=float).tobytes())
+    return h.hexdigest()
+
+
+def _hydro_arrays(database: xr.Dataset | HydroArrays) -> HydroArrays:
+    if isinstance(database, HydroArrays):
+        return database
+    if isinstance(database, xr.Dataset):
+        speed = float(database.attrs.get("forward_speed", 0.0))
+        if speed != 0.0:
+            warnings.warn(
+                f"database attrs['forward_speed'] = {speed} m/s; the radiation models assume a "
+                "zero-speed database and apply no forward-speed correction",
+                RuntimeWarning,
+                stacklevel=3,
+            )
+        return as_arrays(database)
+    raise ValueError(
+        f"database must be an xarray.Dataset (ship_gym.hydro.load_database) or HydroArrays; "
+        f"got {type(database).__name__}"
+    )
+
+
+def _check_positive(name: str, value: float) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}={value!r}; expected a positive number") from None
+    if not (math.isfinite(v) and v > 0.0):
+        raise ValueError(f"{name}={value!r}; expected a finite positive number")
+    return v
+
+
+def _vector6(name: str, value: ArrayLike | None) -> NDArray[np.float64]:
+    if value is None:
+        raise ValueError(f"{name} is None; expected a (6,) array")
+    v = np.asarray(value, dtype=float)
+    if v.shape != (N_DOF,):
+        raise ValueError(f"{name} has shape {v.shape}; expected (6,)")
+    return v
+
+
+def perturbation_velocity(ctx: ForceContext) -> NDArray[np.float64]:
+    """ν_p = ν − (U, 0, 0, 0, 0, 0) [m/s, rad/s] with U = ``ctx.forward_speed`` [m/s]."""
+    v = _vector6("ctx.nu", ctx.nu).copy()
+    v[SURGE] -= float(ctx.forward_speed)
+    return v
+
+
+# ============================================================================================
+# memory model (Matusiak case 1)
+# ============================================================================================
+class RadiationMemory(ForceModel):
+    """Radiation memory force of Cummins' equation (Matusiak eq. 15–16), Kring–Sclavounos form.
+
+    ``added_mass`` = A(∞) is moved to the left-hand side (Kring–Huang–Sclavounos eq. 3) and
+    the force is −μ(t), μ(t) = ∫₀^t K(t − τ) ν_p(τ) dτ (Matusiak eq. 15), ν_p the perturbation
+    velocity (module docstring). The motion is taken to start at the reset time t₀ (ν_p = 0
+    before), for both methods.
+
+    Kernels come from :func:`ship_gym.hydro.retardation.compute_kernels` (Filon quadrature,
+    Gourlay eq. 4–10) up to ``t_max`` and are truncated there; :attr:`decay` reports how far
+    they have decayed (a ``RuntimeWarning`` is issued when a pair keeps more than 1 % of its
+    peak in the last 5 % of the window) and :attr:`ogilvie_error` how well the kernels
+    reproduce the database A(ω), B(ω) (Ogilvie's relations).
+
+    High-frequency tail: ``tail="power"`` with ``tail_exponent="fit"`` (default) extends
+    B ∝ ω⁻ⁿ beyond ω_max with n fitted per pair on the last 20 % of the grid. For the bundled
+    S175 (ω_max = 1.67 rad/s, B(ω_max)/max B = 0.2–0.6, A(ω_max)/A(∞) = 0.5–0.85 — far from the
+    asymptotic regime) the fitted exponent is 2 for all pairs but sway–roll, and the
+    kernel-implied B − iω(A − A(∞)) matches the database within 0.8–4.9 % per pair (largest
+    error over 0.2–1.6 rad/s, relative to the diagonal scale), against 4–16 % with the
+    asymptotic n = 4 (sway–roll: ≈ 5 % either way). Kernels with n = 2 leave t = 0 with a finite
+    slope instead of zero slope; harmless for the trapezoid rule and the fit.
+
+    Methods
+    -------
+    ``"convolution"`` (reference)
+        ν_p is stored on accepted steps (:meth:`commit`, uniform spacing ``dt``; anything else
+        raises) in a ring buffer of the last N = t_max/dt + 1 samples. At t = t_n + h,
+        0 ≤ h ≤ dt (a Runge–Kutta stage time, with the *current* stage velocity ``ctx.nu``),
+        the trapezoidal rule is applied on the committed nodes and on the partial interval
+        [t_n, t]::
+
+            μ(t) ≈ Σ_{k<n} (dt/2)[K(t − t_k) v_k + K(t − t_{k+1}) v_{k+1}]
+                   + (h/2)[K(h) v_n + K(0) v(t)],
+
+        truncated where t − t_k > t_max (at h = 0 the newest node takes the current velocity,
+        equal to v_n for any integrator that evaluates at the committed state). The kernel is
+        needed at the shifted offsets s_j = h + j·dt: it is computed by Filon on the grid
+        dt/``kernel_refinement`` (default dt/2) and interpolated by a cubic spline, so h = 0,
+        dt/2 and dt fall on exact kernel nodes (no interpolation error) and any other h is
+        spline-accurate (O(Δt⁴)). The weighted shifted kernels are cached per h (an RK4 step
+        uses three: 0, dt/2, dt), and an evaluation is one (6 × 6N) matrix–vector product over
+        the ring buffer: O(36 N).
+        The evaluation at h = dt before a commit equals the one at h = 0 after committing the
+        same velocity, to rounding.
+    ``"state_space"`` (fast, default)
+        A stable realisation ż = A z + B ν_p, μ = C z + D ν_p (D = 0) fitted once to K by
+        :func:`ship_gym.hydro.state_space.fit_state_space` (options
+        :data:`DEFAULT_FIT_OPTIONS`, kernel grid 0.05 s) and cached per database and options.
+        The model has :attr:`n_states` = order states; :meth:`evaluate` returns
+        (−(C z + D ν_p), A z + B ν_p). The caller integrates the states (initial value
+        :meth:`initial_states` = 0) and resets them.
+
+    Parameters
+    ----------
+    database : xarray.Dataset or HydroArrays
+        Zero-speed database with A(ω), B(ω) and A(∞) (``ship_gym.hydro.load_database``).
+    method : {"state_space", "convolution"}
+        Evaluation path.
+    dt : float, optional
+        Time step of the committed history [s]; required for ``"convolution"``, unused by
+        ``"state_space"``.
+    t_max : float
+        Kernel truncation time [s]; for the convolution it is rounded to a multiple of dt.
+    tail : {"power", "none", "taper"}
+        High-frequency treatment of B(ω) (:mod:`ship_gym.hydro.retardation`).
+    tail_exponent : int or "fit"
+        Exponent n of the power tail B ∝ ω⁻ⁿ.
+    lumped : bool
+        Holloway's lumped mode (his eq. 10): :attr:`added_mass` is None and the force also
+        contains −A(∞) ν̇ₑ, ν̇ₑ = ``ctx.acceleration_extrapolated`` (required).
+    quadrature : {"filon", "simpson", "trapezoid", "fft"}
+        Kernel quadrature (default Filon, Gourlay eq. 4–10).
+    kernel_refinement : int
+        Kernel grid = dt / kernel_refinement for the convolution (≥ 1; 2 makes h = dt/2 exact).
+    fit_options : mapping, optional
+        Overrides of :data:`DEFAULT_FIT_OPTIONS` (state-space path).
+    commit_tolerance : float
+        Allowed deviation of commit and evaluation times from the uniform grid, as a fraction
+        of dt [-].
+
+    Attributes
+    ----------
+    A_inf : numpy.ndarray
+        (6, 6) infinite-frequency added mass [kg, kg·m, kg·m²].
+    kernels : RetardationKernels
+        Kernels K[t, i, j] (output i, input j) on the kernel grid.
+    decay : KernelDecay
+        Truncation report of K at t_max.
+    ogilvie_error : ReconstructionError
+        Relative RMS errors per pair of A(ω) − A(∞) and B(ω) reconstructed from K.
+    state_space : StateSpaceRadiation or None
+        The fitted system (``"state_space"`` only).
+    order : int
+        Number of states (0 for the convolution).
+    fit_error : numpy.ndarray or None
+        (6, 6) relative L2 error of the fitted K per pair (time domain) [-].
+    frequency_error : tuple of numpy.ndarray or None
+        (6, 6) relative RMS errors of the fit's A(ω) − A(∞) and B(ω) against the database [-].
+    """
+
+    name = "radiation"
+
+    def __init__(
+        self,
+        database: xr.Dataset | HydroArrays,
+        *,
+        method: MemoryMethod = "state_space",
+        dt: float | None = None,
+        t_max: float = 60.0,
+        tail: str = "power",
+        tail_exponent: int | str = "fit",
+        lumped: bool = False,
+        quadrature: str = "filon",
+        kernel_refinement: int = 2,
+        fit_options: Mapping[str, Any] | None = None,
+        commit_tolerance: float = 1e-6,
+    ) -> None:
+        if method not in ("state_space", "convolution"):
+            raise ValueError(f"method={method!r}; expected 'state_space' or 'convolution'")
+        h = _hydro_arrays(database)
+        if h.added_mass_infinite is None:
+            raise ValueError(
+                "database has no infinite-frequency added mass A(∞) (omega = inf entry); the "
+                "memory model needs it on the left-hand side"
+            )
+        self.method: str = method
+        self.lumped: bool = bool(lumped)
+        self.A_inf: NDArray[np.float64] = np.array(h.added_mass_infinite, dtype=float)
+        self.added_mass = None if self.lumped else self.A_inf
+        t_max = _check_positive("t_max", t_max)
+        self._tol = _check_positive("commit_tolerance", commit_tolerance)
+        key_base = (
+            _digest(h.omega, h.added_mass, h.radiation_damping, self.A_inf),
+            str(tail),
+            str(tail_exponent),
+            str(quadrature),
+        )
+
+        def kernels_on(grid: float, window: float) -> RetardationKernels:
+            return _cached(
+                ("kernels", *key_base, grid, window),
+                lambda: compute_kernels(
+                    h.omega,
+                    h.added_mass,
+                    h.radiation_damping,
+                    self.A_inf,
+                    t_max=window,
+                    dt=grid,
+                    method=quadrature,  # type: ignore[arg-type]
+                    tail=tail,  # type: ignore[arg-type]
+                    tail_exponent=tail_exponent,  # type: ignore[arg-type]
+                ),
+            )
+
+        self.state_space: StateSpaceRadiation | None = None
+        self.fit_error: NDArray[np.float64] | None = None
+        self.frequency_error: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+        self.order: int = 0
+        self.dt: float | None = None
+        if method == "convolution":
+            if dt is None:
+                raise ValueError("method='convolution' needs dt, the committed time step [s]")
+            self.dt = _check_positive("dt", dt)
+            if int(kernel_refinement) != kernel_refinement or kernel_refinement < 1:
+                raise ValueError(
+                    f"kernel_refinement={kernel_refinement!r}; expected an integer ≥ 1"
+                )
+            self._refine = int(kernel_refinement)
+            n_steps = max(2, round(t_max / self.dt))
+            self.kernels = kernels_on(self.dt / self._refine, n_steps * self.dt)
+            self._setup_convolution(n_steps)
+        else:
+            self.kernels = kernels_on(_FIT_DT, t_max)
+            opts = dict(DEFAULT_FIT_OPTIONS)
+            if fit_options is not None:
+                opts.update(fit_options)
+            key = ("fit", *key_base, _FIT_DT, t_max, tuple(sorted(opts.items())))
+            self.state_space = _cached(
+                key, lambda: fit_state_space(self.kernels.t, self.kernels.K, **opts)
+            )
+            ss = self.state_space
+            self.order = ss.order
+            self.n_states = ss.order
+            self.fit_error = np.asarray(ss.fit_error)
+            self.frequency_error = frequency_fit_error(
+                ss, h.omega, h.added_mass, h.radiation_damping, self.A_inf
+            )
+            self._A = np.ascontiguousarray(ss.A)
+            self._B = np.ascontiguousarray(ss.B)
+            self._C = np.ascontiguousarray(ss.C)
+            self._D = np.ascontiguousarray(ss.D)
+            self._has_d = bool(np.any(self._D != 0.0))
+        self.decay: KernelDecay = kernel_decay(self.kernels.t, self.kernels.K)
+        if not self.decay.all_decayed:
+            worst = float(np.max(self.decay.ratio))
+            warnings.warn(
+                f"radiation kernels have not decayed at t_max = {self.kernels.t[-1]:g} s: "
+                f"the last 5 % of the window still holds {worst:.3g} of the peak |K| "
+                f"(> {self.decay.threshold}); increase t_max",
+                RuntimeWarning,
+                stacklevel=2,
+            )
+        self.ogilvie_error: ReconstructionError = reconstruction_error(
+            self.kernels.t,
+            self.kernels.K,
+            h.omega,
+            h.added_mass,
+            h.radiation_damping,
+            self.A_inf,
+        )
+        self._empty = np.zeros(0)
+
+    # ------------------------------------------------------------------ convolution set-up
+    def _setup_convolution(self, n_steps: int) -> None:
+        kern = self.kernels
+        self._n_kernel = n_steps + 1  # nodes s = 0, dt, …, t_max
+        self.t_max: float = n_steps * float(self.dt)  # type: ignore[arg-type]
+        self._k_fine = np.ascontiguousarray(kern.K)
+        self._spline = CubicSpline(kern.t, kern.K, axis=0)
+        self._k0 = self._k_fine[0].copy()
+        self._shift_cache: dict[int, tuple[NDArray, NDArray, int]] = {}
+        self._buffer = np.zeros((2 * self._n_kernel, N_DOF))
+        self._count = -1  # number of committed intervals; −1 before reset
+        self._t0 = 0.0
+        self._v_first = np.zeros(N_DOF)
+
+    def kernel_at(self, s: ArrayLike) -> NDArray[np.float64]:
+        """K(s) [kg/s², …] at offsets s [s] (cubic spline of the kernel grid, 0 beyond t_max).
+
+        Returns an array of shape ``s.shape + (6, 6)`` with axes (output i, input j).
+        """
+        ss = np.asarray(s, dtype=float)
+        if not hasattr(self, "_spline"):
+            raise ValueError("kernel_at is available for method='convolution' only")
+        out = self._spline(np.clip(ss, 0.0, self.t_max))
+        return np.where(((ss >= 0) & (ss <= self.t_max * (1 + 1e-12)))[..., None, None], out, 0.0)
+
+    def _shifted(self, h: float) -> tuple[NDArray, NDArray, int]:
+        """(flattened weighted kernel (6, 6N), shifted kernel (N, 6, 6), last used node J)."""
+        dt = float(self.dt)  # type: ignore[arg-type]
+        key = round(h / dt * 1e9)
+        hit = self._shift_cache.get(key)
+        if hit is not None:
+            return hit
+        n = self._n_kernel
+        r = self._refine
+        fine = h / dt * r
+        m = round(fine)
+        if abs(fine - m) < 1e-9:  # h on a kernel node: exact samples, no interpolation
+            ks = np.zeros((n, N_DOF, N_DOF))
+            nodes = self._k_fine[m::r]
+            ks[: nodes.shape[0]] = nodes[:n]
+        else:
+            ks = self.kernel_at(h + dt * np.arange(n))
+        last = n - 1 if h == 0.0 else n - 2  # last node with s = h + j·dt ≤ t_max
+        ks[last + 1 :] = 0.0
+        w = np.full(n, dt)
+        w[0] = 0.5 * dt + 0.5 * h
+        w[last] = 0.5 * dt
+        w[last + 1 :] = 0.0
+        weighted = (w[:, None, None] * ks)[::-1]  # chronological: oldest first
+        flat = np.ascontiguousarray(weighted.transpose(1, 0, 2).reshape(N_DOF, -1))
+        if len(self._shift_cache) >= 16:
+            self._shift_cache.clear()
+        self._shift_cache[key] = (flat, ks, last)
+        return flat, ks, last
+
+    # ------------------------------------------------------------------ protocol
+    def initial_states(self) -> NDArray[np.float64]:
+        """Zero memory states (ship at rest relative to U before t₀), length :attr:`n_states`."""
+        return np.zeros(self.n_states)
+
+    def reset(self, t0: float, ctx: ForceContext) -> None:
+        """Forget the history; the convolution stores ν_p(t₀) of ``ctx`` as its first sample.
+
+        The state-space states are reset by the caller (:meth:`initial_states`).
+        """
+        if self.method != "convolution":
+            return
+        if not math.isfinite(float(t0)):
+            raise ValueError(f"t0={t0!r}; expected a finite time [s]")
+        self._buffer[:] = 0.0
+        self._count = 0
+        self._t0 = float(t0)
+        v = perturbation_velocity(ctx)
+        self._write(0, v)
+        self._v_first = v
+
+    def _write(self, count: int, v: NDArray[np.float64]) -> None:
+        p = count % self._n_kernel
+        self._buffer[p] = v
+        self._buffer[p + self._n_kernel] = v
+
+    def commit(self, ctx: ForceContext, states: NDArray[np.float64]) -> None:
+        """Store ν_p at the end of an accepted step (convolution only).
+
+        Commits must be spaced by exactly ``dt`` (to ``commit_tolerance``·dt); a commit at the
+        time of the last sample replaces it.
+
+        Raises
+        ------
+        ValueError
+            If the model was not reset, or ``ctx.t`` is neither t_n nor t_n + dt.
+        """
+        if self.method != "convolution":
+            return
+        self._require_reset()
+        dt = float(self.dt)  # type: ignore[arg-type]
+        t_last = self._t0 + self._count * dt
+        t = float(ctx.t)
+        if abs(t - t_last) <= self._tol * dt:
+            count = self._count
+        elif abs(t - (t_last + dt)) <= self._tol * dt:
+            count = self._count + 1
+        else:
+            raise ValueError(
+                f"commit at t = {t!r} s, but the convolution history needs uniform steps of "
+                f"dt = {dt} s: expected t = {t_last + dt!r} s (last sample at {t_last!r} s)"
+            )
+        v = perturbation_velocity(ctx)
+        self._write(count, v)
+        self._count = count
+        if count == 0:
+            self._v_first = v
+
+    def _require_reset(self) -> None:
+        if self._count < 0:
+            raise ValueError("the convolution history is empty: call reset(t0, ctx) first")
+
+    def _memory_convolution(self, ctx: ForceContext, v: NDArray[np.float64]) -> NDArray:
+        self._require_reset()
+        dt = float(self.dt)  # type: ignore[arg-type]
+        t_n = self._t0 + self._count * dt
+        h = float(ctx.t) - t_n
+        if h < -self._tol * dt or h > dt * (1.0 + self._tol):
+            raise ValueError(
+                f"evaluation at t = {ctx.t!r} s is outside the step [t_n, t_n + dt] = "
+                f"[{t_n!r}, {t_n + dt!r}] s after the last commit; the convolution evaluates "
+                "only within one step of its history"
+            )
+        h = min(max(h, 0.0), dt)
+        if self._count == 0 and h == 0.0:
+            return np.zeros(N_DOF)  # empty integral at t = t₀
+        flat, ks, last = self._shifted(h)
+        n = self._n_kernel
+        p = self._count % n
+        window = self._buffer[p + 1 : p + 1 + n].reshape(-1)
+        mu = flat @ window
+        v_n = self._buffer[p]
+        if h == 0.0:
+            if self._count > 0:  # use the current velocity at the newest node
+                mu += (0.5 * dt) * (self._k0 @ (v - v_n))
+        else:
+            mu += (0.5 * h) * (self._k0 @ v)
+        if self._count < last:  # the first sample is an end node of the trapezoid
+            mu -= (0.5 * dt) * (ks[self._count] @ self._v_first)
+        return mu
+
+    def evaluate(
+        self, ctx: ForceContext, states: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Memory force −μ (plus −A(∞)ν̇ₑ when lumped) and the state derivatives.
+
+        Parameters
+        ----------
+        ctx : ForceContext
+            Uses ``t`` [s], ``nu`` [m/s, rad/s], ``forward_speed`` [m/s] and, when lumped,
+            ``acceleration_extrapolated`` [m/s², rad/s²].
+        states : numpy.ndarray
+            (n_states,) memory states z (state-space path; ignored by the convolution).
+
+        Returns
+        -------
+        force : numpy.ndarray
+            (6,) [N, N·m], body axes, about O.
+        states_dot : numpy.ndarray
+            (n_states,) ż = A z + B ν_p (empty for the convolution).
+        """
+        v = perturbation_velocity(ctx)
+        if self.method == "convolution":
+            force = -self._memory_convolution(ctx, v)
+            states_dot = self._empty
+        else:
+            z = np.asarray(states, dtype=float)
+            if z.shape != (self.n_states,):
+                raise ValueError(f"states has shape {z.shape}; expected ({self.n_states},)")
+            force = -(self._C @ z)
+            states_dot = self._A @ z + self._B @ v
+            if self._has_d:
+                force -= self._D @ v
+        if self.lumped:
+            if ctx.acceleration_extrapolated is None:
+                raise ValueError(
+                    "lumped=True needs ctx.acceleration_extrapolated (Holloway's ν̇ₑ, eq. 6); "
+                    "got None"
+                )
+            acc = _vector6("ctx.acceleration_extrapolated", ctx.acceleration_extrapolated)
+            force = force - self.A_inf @ acc
+        return force, states_dot
+
+
+# ============================================================================================
+# constant coefficients (Matusiak case 2)
+# ============================================================================================
+def _interpolator(omega: NDArray[np.float64], values: NDArray[np.float64], kind: str) -> Any:
+    if kind == "cubic":
+        return CubicSpline(omega, values, axis=0)
+    if kind == "linear":
+
+        def lin(w: float) -> NDArray[np.float64]:
+            flat = values.reshape(omega.size, -1)
+            return np.array([np.interp(w, omega, col) for col in flat.T]).reshape(values.shape[1:])
+
+        return lin
+    raise ValueError(f"interpolation={kind!r}; expected 'cubic' or 'linear'")
+
+
+def roll_natural_frequency(
+    database: xr.Dataset | HydroArrays,
+    *,
+    interpolation: Interpolation = "cubic",
+    tol: float = 1e-10,
+    max_iter: int = 200,
+) -> float:
+    """Undamped roll natural frequency ω_φ = √(C44 / (I44 + A44(ω_φ))) by fixed-point iteration.
+
+    Starts from ω = √(C44/(I44 + A44(∞))) (or the middle of the frequency range when A(∞) is
+    missing) and iterates ω ← √(C44/(I44 + A44(ω))) with A44 interpolated in ω.
+
+    Parameters
+    ----------
+    database : xarray.Dataset or HydroArrays
+        Needs ``hydrostatic_stiffness`` (C44 [N·m/rad], including the weight term) and
+        ``inertia_matrix`` (I44 about O [kg·m²]).
+    interpolation : {"cubic", "linear"}
+        Interpolation of A44(ω).
+    tol : float
+        Convergence tolerance on ω [rad/s].
+    max_iter : int
+        Iteration limit.
+
+    Returns
+    -------
+    float
+        ω_φ [rad/s].
+
+    Raises
+    ------
+    ValueError
+        If C44 or I44 is missing or non-positive, the iteration leaves the database range, or it
+        does not converge.
+    """
+    h = _hydro_arrays(database)
+    if h.hydrostatic_stiffness is None or h.inertia_matrix is None:
+        raise ValueError(
+            "roll natural frequency needs hydrostatic_stiffness and inertia_matrix in the "
+            "database; pass roll_natural_frequency explicitly instead"
+        )
+    c44 = float(h.hydrostatic_stiffness[ROLL, ROLL])
+    i44 = float(h.inertia_matrix[ROLL, ROLL])
+    if not (c44 > 0.0 and i44 > 0.0):
+        raise ValueError(
+            f"C44 = {c44} N·m/rad and I44 = {i44} kg·m² must be positive (stable upright ship)"
+        )
+    a44 = _interpolator(h.omega, h.added_mass[:, ROLL, ROLL], interpolation)
+    if h.added_mass_infinite is not None:
+        w = math.sqrt(c44 / (i44 + float(h.added_mass_infinite[ROLL, ROLL])))
+    else:
+        w = 0.5 * (h.omega[0] + h.omega[-1])
+    for _ in range(max_iter):
+        if not h.omega[0] <= w <= h.omega[-1]:
+            raise ValueError(
+                f"roll natural frequency iterate {w:.5g} rad/s is outside the database range "
+                f"[{h.omega[0]:.5g}, {h.omega[-1]:.5g}] rad/s"
+            )
+        w_new = math.sqrt(c44 / (i44 + float(a44(w))))
+        if abs(w_new - w) <= tol:
+            return w_new
+        w = w_new
+    raise ValueError(f"roll natural frequency did not converge in {max_iter} iterations")
+
+
+_roll_frequency = roll_natural_frequency  # the class below has a parameter of the same name
+
+
+class ConstantCoefficientRadiation(ForceModel):
+    """Frequency-independent radiation force, Matusiak case 2 (his eq. 13–14).
+
+    F = −A_c ν̇ − B_c ν_p with ``added_mass`` = A_c on the left-hand side and force −B_c ν_p
+    (no memory). The full 6 × 6 matrices are used (Matusiak's eq. 14 lists the couplings that
+    survive port–starboard symmetry and also drops surge–heave; for the S175 A13 is ≈ 1 % of
+    √(A11 A33)).
+
+    * case ``"2b"``: A_c = A(ω_c), B_c = B(ω_c) with ω_c = |ω_e|, the encounter frequency.
+    * case ``"2a"``: as 2b, except the roll row and column (index 3: roll and its couplings
+      with every other DOF) taken at the roll natural frequency ω_φ (given, or from
+      :func:`roll_natural_frequency`).
+
+    A negative encounter frequency (ship overtaking the waves, following seas) is used by its
+    magnitude: the motion oscillates at |ω_e|. A(ω), B(ω) are interpolated in ω by a cubic
+    spline (not-a-knot, exact at database frequencies) or linearly; frequencies outside the
+    database range [ω_min, ω_max] raise.
+
+    Parameters
+    ----------
+    database : xarray.Dataset or HydroArrays
+        Zero-speed database.
+    case : {"2a", "2b"}
+        Matusiak's case.
+    encounter_frequency : float
+        ω_e [rad/s] (see :meth:`from_wave` and :func:`ship_gym.waves.encounter_frequency`).
+    roll_natural_frequency : float, optional
+        ω_φ [rad/s] for case 2a; computed by fixed-point iteration when None.
+    interpolation : {"cubic", "linear"}
+        Interpolation of the coefficients in ω.
+
+    Attributes
+    ----------
+    omega_c : float
+        |ω_e| [rad/s].
+    omega_roll : float or None
+        ω_φ [rad/s] (case 2a).
+    added_mass : numpy.ndarray
+        (6, 6) A_c [kg, kg·m, kg·m²].
+    damping : numpy.ndarray
+        (6, 6) B_c [kg/s, kg·m/s, kg·m²/s].
+    """
+
+    name = "radiation"
+
+    def __init__(
+        self,
+        database: xr.Dataset | HydroArrays,
+        *,
+        case: Case = "2b",
+        encounter_frequency: float,
+        roll_natural_frequency: float | None = None,
+        interpolation: Interpolation = "cubic",
+    ) -> None:
+        if case not in ("2a", "2b"):
+            raise ValueError(f"case={case!r}; expected '2a' or '2b' (Matusiak case 2)")
+        h = _hydro_arrays(database)
+        try:
+            w_e = float(encounter_frequency)
+        except (TypeError, ValueError):
+            raise ValueError(
+                f"encounter_frequency={encounter_frequency!r}; expected a number [rad/s]"
+            ) from None
+        if not math.isfinite(w_e):
+            raise ValueError(f"encounter_frequency={encounter_frequency!r}; expected finite")
+        self.case: str = case
+        self.omega_c: float = abs(w_e)
+        added = _interpolator(h.omega, h.added_mass, interpolation)
+        damping = _interpolator(h.omega, h.radiation_damping, interpolation)
+        self._check_range(h.omega, self.omega_c, "encounter frequency |ω_e|")
+        a = np.array(added(self.omega_c), dtype=float)
+        b = np.array(damping(self.omega_c), dtype=float)
+        self.omega_roll: float | None = None
+        if case == "2a":
+            if roll_natural_frequency is None:
+                w_r = _roll_frequency(h, interpolation=interpolation)
+            else:
+                w_r = _check_positive("roll_natural_frequency", roll_natural_frequency)
+            self._check_range(h.omega, w_r, "roll natural frequency ω_φ")
+            self.omega_roll = w_r
+            a_r = np.asarray(added(w_r), dtype=float)
+            b_r = np.asarray(damping(w_r), dtype=float)
+            a[ROLL, :], a[:, ROLL] = a_r[ROLL, :], a_r[:, ROLL]
+            b[ROLL, :], b[:, ROLL] = b_r[ROLL, :], b_r[:, ROLL]
+        self.added_mass = a
+        self.damping: NDArray[np.float64] = b
+        self._empty = np.zeros(0)
+
+    @staticmethod
+    def _check_range(omega: NDArray[np.float64], w: float, what: str) -> None:
+        if not omega[0] <= w <= omega[-1]:
+            raise ValueError(
+                f"{what} = {w:.6g} rad/s is outside the database range "
+                f"[{omega[0]:.6g}, {omega[-1]:.6g}] rad/s"
+            )
+
+    @classmethod
+    def from_wave(
+        cls,
+        database: xr.Dataset | HydroArrays,
+        *,
+        wave_omega: float,
+        speed: float,
+        beta: float,
+        case: Case = "2b",
+        g: float = GRAVITY,
+        roll_natural_frequency: float | None = None,
+        interpolation: Interpolation = "cubic",
+    ) -> ConstantCoefficientRadiation:
+        """Model at the encounter frequency of a regular wave.
+
+        ω_e = ω − ω²U cos β / g (:func:`ship_gym.waves.sea_state.encounter_frequency`).
+
+        Parameters
+        ----------
+        database : xarray.Dataset or HydroArrays
+            Zero-speed database.
+        wave_omega : float
+            Wave frequency ω [rad/s].
+        speed : float
+            Forward speed U [m/s].
+        beta : float
+            Relative heading β [rad] (0 following, π head seas).
+        case, roll_natural_frequency, interpolation
+            As in the constructor.
+        g : float
+            Gravitational acceleration [m/s²].
+        """
+        w_e = float(_encounter_frequency(wave_omega, speed, beta, g))
+        return cls(
+            database,
+            case=case,
+            encounter_frequency=w_e,
+            roll_natural_frequency=roll_natural_frequency,
+            interpolation=interpolation,
+        )
+
+    def evaluate(
+        self, ctx: ForceContext, states: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Force −B_c ν_p [N, N·m] (body axes, about O) and no state derivatives."""
+        return -(self.damping @ perturbation_velocity(ctx)), self._empty
