@@ -50,7 +50,7 @@ class ForceContext:
     acceleration_extrapolated : numpy.ndarray or None
         (6,) extrapolated ν̇ₑ for Holloway's lumped mode, else None.
     commands : dict
-        Actuator commands (rudder angle [rad], fin angles [rad], shaft speed [rad/s], …).
+        Actuator commands (rudder angle [rad], fin angles [rad], shaft speed [rev/s], …).
     """
 
     t: float
