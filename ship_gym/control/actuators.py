@@ -23,10 +23,10 @@ move faster (≈ 10–20 °/s for modern electro-hydraulic stabilisers).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
-from ship_gym.control.autopilot import HeadingAutopilot
 from ship_gym.forces.base import ForceContext, ForceModel
 
 
@@ -78,27 +78,56 @@ FOIL_SERVO = ServoSpec(max_angle=np.radians(15.0), max_rate=np.radians(20.0), ti
 """Typical ride-control T-foil / flaps: ±15°, 20 °/s."""
 
 
+class Controller(Protocol):
+    """A feedback law producing an actuator command, with states integrated with the ship.
+
+    Implemented by :class:`~ship_gym.control.autopilot.HeadingAutopilot`,
+    :class:`~ship_gym.control.stabilisers.FinController` and
+    :class:`~ship_gym.control.stabilisers.RideController`.
+    """
+
+    n_states: int
+
+    def initial(self, ctx: ForceContext) -> dict:
+        """Quantities remembered at reset (e.g. the initial heading)."""
+        ...
+
+    def command(self, ctx: ForceContext, states: np.ndarray, initial: dict) -> float:
+        """Commanded angle [rad] before saturation."""
+        ...
+
+    def state_rates(
+        self,
+        ctx: ForceContext,
+        states: np.ndarray,
+        initial: dict,
+        command: float,
+        achievable: float,
+    ) -> np.ndarray:
+        """Derivatives of the controller states (``achievable`` = the saturated command)."""
+        ...
+
+
 class Actuated(ForceModel):
     """A force model whose control angle comes from a servo integrated with the ship.
 
     The wrapped model reads its angle from ``ctx.commands[key]``; this wrapper owns the servo
-    state δ, reads the *command* from ``ctx.commands[command_key]`` (default ``key + "_command"``),
-    and hands the wrapped model a context in which ``commands[key]`` is the applied angle.
+    state δ, takes the *command* from a feedback :class:`Controller` if one is given, else from
+    ``ctx.commands[command_key]`` (default ``key + "_command"``; missing → 0), and hands the
+    wrapped model a context in which ``commands[key]`` is the applied angle.
 
     Parameters
     ----------
     model : ForceModel
-        The hydrodynamic model of the surface (rudder, fins, T-foil…).
+        The hydrodynamic model of the surface (rudder, fins, T-foil…), stateless.
     servo : ServoSpec
         Limits and lag.
     key : str
         Command key the wrapped model reads its angle from (``"rudder"``, ``"fins"``…).
     command_key : str, optional
-        Key of the commanded angle [rad] (default ``f"{key}_command"``); missing → 0.
-    autopilot : HeadingAutopilot, optional
-        If given, the command comes from this heading controller (set-point
-        ``ctx.commands[autopilot.heading_key]`` [rad], default: hold the initial heading) and the
-        integral of its error is a second state.
+        Key of an open-loop commanded angle [rad].
+    controller : Controller, optional
+        Feedback law (autopilot, fin or ride controller); its states follow the servo's.
     """
 
     def __init__(
@@ -107,7 +136,7 @@ class Actuated(ForceModel):
         servo: ServoSpec,
         key: str,
         command_key: str | None = None,
-        autopilot: HeadingAutopilot | None = None,
+        controller: Controller | None = None,
     ) -> None:
         if model.n_states:
             raise ValueError(
@@ -119,33 +148,26 @@ class Actuated(ForceModel):
         self.command_key = command_key or f"{key}_command"
         self.name = model.name
         self.added_mass = model.added_mass
-        self.autopilot = autopilot
-        self.n_states = 1 if autopilot is None else 2
-        self._initial_heading = 0.0
+        self.controller = controller
+        self.n_states = 1 + (0 if controller is None else int(controller.n_states))
+        self._initial: dict = {}
 
     def reset(self, t0: float, ctx: ForceContext) -> None:
-        """Remember the initial heading (the default autopilot set-point)."""
-        self._initial_heading = float(ctx.eta[5])
+        """Let the controller remember what it needs (e.g. the initial heading)."""
+        self._initial = {} if self.controller is None else self.controller.initial(ctx)
         self.model.reset(t0, ctx)
 
     def evaluate(self, ctx: ForceContext, states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Wrapped force at the applied angle, and the servo rate."""
+        """Wrapped force at the applied angle; servo (and controller) state rates."""
         angle = float(states[0])
         applied = float(self.servo.applied(angle))
-        if self.autopilot is None:
+        if self.controller is None:
             command = float(ctx.commands.get(self.command_key, 0.0))
-            rates = np.array([float(self.servo.rate(angle, command))])
+            extra = np.zeros(0)
         else:
-            ap = self.autopilot
-            ref = float(ctx.commands.get(ap.heading_key, self._initial_heading))
-            command = ap.command(ref, ctx.eta[5], ctx.nu[5], float(states[1]))
-            target = float(np.clip(command, -self.servo.max_angle, self.servo.max_angle))
-            rates = np.array(
-                [
-                    float(self.servo.rate(angle, command)),
-                    ap.integral_rate(ref, ctx.eta[5], command, target),
-                ]
-            )
+            command = float(self.controller.command(ctx, states[1:], self._initial))
+            achievable = float(np.clip(command, -self.servo.max_angle, self.servo.max_angle))
+            extra = self.controller.state_rates(ctx, states[1:], self._initial, command, achievable)
         inner = ForceContext(
             t=ctx.t,
             eta=ctx.eta,
@@ -155,6 +177,8 @@ class Actuated(ForceModel):
             wave_phasor=ctx.wave_phasor,
             acceleration_extrapolated=ctx.acceleration_extrapolated,
             commands={**ctx.commands, self.key: applied},
+            shared=ctx.shared,
         )
         force, _ = self.model.evaluate(inner, np.zeros(0))
+        rates = np.concatenate([[float(self.servo.rate(angle, command))], extra])
         return force, rates

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ship_gym.conventions import wrap_angle
+from ship_gym.forces.base import ForceContext
 
 
 @dataclass(frozen=True)
@@ -135,18 +136,29 @@ class HeadingAutopilot:
         kd = max((2.0 * damping * natural_frequency * t - 1.0) / k, 0.0)
         return cls(kp=kp, kd=kd, ki=kp * natural_frequency / 10.0)
 
-    def command(
-        self, heading_ref: float, heading: float, yaw_rate: float, integral: float
-    ) -> float:
-        """Commanded rudder δ_c [rad] (before saturation)."""
-        e = float(wrap_angle(heading_ref - heading))
-        return self.kp * e - self.kd * yaw_rate + self.ki * integral
+    def reference(self, ctx: ForceContext, initial: dict) -> float:
+        """Heading set-point ψ_ref [rad]: the command, or the heading at reset."""
+        return float(ctx.commands.get(self.heading_key, initial.get("heading", 0.0)))
 
-    def integral_rate(
-        self, heading_ref: float, heading: float, command: float, applied: float
-    ) -> float:
-        """d/dt ∫e with back-calculation: e + (δ_applied − δ_c)/(K_i T_t)."""
-        e = float(wrap_angle(heading_ref - heading))
+    def initial(self, ctx: ForceContext) -> dict:
+        """What the controller remembers at reset (the initial heading)."""
+        return {"heading": float(ctx.eta[5])}
+
+    def command(self, ctx: ForceContext, states: np.ndarray, initial: dict) -> float:
+        """Commanded rudder δ_c [rad] (before saturation)."""
+        e = float(wrap_angle(self.reference(ctx, initial) - ctx.eta[5]))
+        return self.kp * e - self.kd * float(ctx.nu[5]) + self.ki * float(states[0])
+
+    def state_rates(
+        self,
+        ctx: ForceContext,
+        states: np.ndarray,
+        initial: dict,
+        command: float,
+        achievable: float,
+    ) -> np.ndarray:
+        """d/dt ∫e with back-calculation: e + (δ_achievable − δ_c)/(K_i T_t)."""
         if self.ki == 0.0:
-            return 0.0
-        return e + (applied - command) / (self.ki * self.tracking_time)
+            return np.zeros(1)
+        e = float(wrap_angle(self.reference(ctx, initial) - ctx.eta[5]))
+        return np.array([e + (achievable - command) / (self.ki * self.tracking_time)])

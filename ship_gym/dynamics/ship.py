@@ -9,7 +9,16 @@ free-floating equilibrium at the given speed:
   Matusiak's constant-coefficient cases 2a / 2b, or none;
 * diffraction from the database at the encounter frequency and relative heading;
 * viscous roll damping B1 p + B2 |p| p from the simplified Ikeda method at the roll natural
-  frequency.
+  frequency;
+* optionally (issue 4): calm-water resistance (Holtrop–Mennen) and a Wageningen B-series
+  propeller at the self-propulsion rpm (``propulsion``), hull manoeuvring forces (Clarke
+  derivatives + cross-flow drag), a rudder behind its servo, open-loop or under the PID heading
+  autopilot tuned on the Nomoto model identified for this hull at this speed, roll fins and a
+  T-foil (open-loop or under their classical controllers).
+
+Commands (``Simulator.step(commands)``, persistent until changed): ``"shaft_speed"`` [rev/s],
+``"rudder_command"`` [rad] or ``"heading"`` [rad] (autopilot), ``"fins_command"`` [rad],
+``"t_foil_command"`` [rad].
 
 The ship starts heading north (ψ = 0) at the origin, so the waves travel to χ = β.
 """
@@ -22,11 +31,20 @@ from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
+from ship_gym.control.actuators import FIN_SERVO, FOIL_SERVO, RUDDER_SERVO, Actuated
+from ship_gym.control.autopilot import HeadingAutopilot
+from ship_gym.control.stabilisers import FinController, RideController, control_derivative
+from ship_gym.dynamics.linearization import nomoto_from_models
 from ship_gym.dynamics.simulator import IntegratorName, Simulator
 from ship_gym.forces.base import ForceModel
 from ship_gym.forces.diffraction import Diffraction
+from ship_gym.forces.fins import RollFins, TFoil
 from ship_gym.forces.froude_krylov import FroudeKrylovHydrostatics
+from ship_gym.forces.manoeuvring import HullManoeuvring
+from ship_gym.forces.propeller import design_propeller_for
 from ship_gym.forces.radiation import ConstantCoefficientRadiation, RadiationMemory
+from ship_gym.forces.resistance import CalmWaterResistance
+from ship_gym.forces.rudder import Rudder
 from ship_gym.forces.viscous import BilgeKeel, ViscousRollDamping
 from ship_gym.hull import equilibrium, load_hull
 from ship_gym.hull.hull import Hull
@@ -76,6 +94,16 @@ class ShipSetup:
     lumped : bool
         Holloway's lumped mode (radiation added mass in the force; needs ``integrator="holloway"``
         and a Cummins radiation model).
+    propulsion : bool
+        Resistance + propeller (surge balance; default shaft speed: self-propulsion at ``speed``).
+    manoeuvring : bool
+        Hull manoeuvring forces in sway/yaw (needed for steering).
+    rudder : {"none", "command", "autopilot"}
+        No rudder, a rudder following ``"rudder_command"``, or the heading autopilot.
+    fins : {"none", "command", "controller"}
+        Roll fins: none, open-loop ``"fins_command"``, or the classical PD stabiliser.
+    t_foil : {"none", "command", "controller"}
+        T-foil: none, open-loop ``"t_foil_command"``, or the classical ride controller.
     """
 
     hull: str = "s175"
@@ -91,12 +119,27 @@ class ShipSetup:
     fk_method: Literal["fast", "reference"] = "fast"
     free_dofs: tuple[bool, ...] = (True, True, True, True, True, True)
     lumped: bool = False
+    propulsion: bool = False
+    manoeuvring: bool = False
+    rudder: Literal["none", "command", "autopilot"] = "none"
+    fins: Literal["none", "command", "controller"] = "none"
+    t_foil: Literal["none", "command", "controller"] = "none"
 
     def __post_init__(self) -> None:
-        if self.radiation not in RADIATION_MODELS:
+        for name, allowed in (
+            ("rudder", ("none", "command", "autopilot")),
+            ("fins", ("none", "command", "controller")),
+            ("t_foil", ("none", "command", "controller")),
+        ):
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"{name} must be one of {allowed}, got {getattr(self, name)!r}")
+        if self.rudder == "autopilot" and not (self.manoeuvring and self.speed > 0.0):
             raise ValueError(
-                f"radiation must be one of {RADIATION_MODELS}, got {self.radiation!r}"
+                "the autopilot needs manoeuvring=True and a positive speed (its gains come from "
+                "the Nomoto model identified at that speed)"
             )
+        if self.radiation not in RADIATION_MODELS:
+            raise ValueError(f"radiation must be one of {RADIATION_MODELS}, got {self.radiation!r}")
         if self.lumped and (
             self.integrator != "holloway" or self.radiation not in ("state_space", "convolution")
         ):
@@ -153,17 +196,14 @@ def build_force_models(
     wave_field: WaveField | None,
     sea: Sea,
     wave_heading: float,
-) -> list[ForceModel]:
-    """The force models of a setup (see the module docstring for the list)."""
-    models: list[ForceModel] = [
-        FroudeKrylovHydrostatics(hull, wave_field, method=setup.fk_method)
-    ]
+) -> tuple[list[ForceModel], dict]:
+    """The force models of a setup and the initial commands (e.g. the self-propulsion shaft
+    speed); see the module docstring for the list."""
+    models: list[ForceModel] = [FroudeKrylovHydrostatics(hull, wave_field, method=setup.fk_method)]
     omega_roll = natural_frequency(database, "Roll")
     if setup.radiation in ("state_space", "convolution"):
         models.append(
-            RadiationMemory(
-                database, method=setup.radiation, dt=setup.dt, lumped=setup.lumped
-            )
+            RadiationMemory(database, method=setup.radiation, dt=setup.dt, lumped=setup.lumped)
         )
     elif setup.radiation in ("2a", "2b"):
         w_e = abs(
@@ -188,7 +228,57 @@ def build_force_models(
                 hull, omega=omega_roll, forward_speed=setup.speed, bilge_keel=keel
             )
         )
-    return models
+    control, commands = _control_models(setup, hull, database, models)
+    return [*models, *control], commands
+
+
+def _control_models(
+    setup: ShipSetup, hull: Hull, database: xr.Dataset, wave_models: list[ForceModel]
+) -> tuple[list[ForceModel], dict]:
+    """Propulsion, manoeuvring and actuated surfaces (evaluated after the wave forces; the
+    propeller before the rudder, which reads its thrust from ``ctx.shared``)."""
+    out: list[ForceModel] = []
+    commands: dict = {}
+    if setup.propulsion:
+        propeller = design_propeller_for(hull)
+        out += [propeller.resistance or CalmWaterResistance.from_hull(hull), propeller]
+        commands["shaft_speed"] = propeller.shaft_speed_for(setup.speed)
+    if setup.manoeuvring:
+        out.append(HullManoeuvring.from_hull(hull))
+    a_lhs = sum((m.added_mass for m in wave_models if m.added_mass is not None), np.zeros((6, 6)))
+    mass = hull.mass.rigid_body_matrix() + a_lhs
+    c = database["hydrostatic_stiffness"].values
+    if setup.rudder != "none":
+        rudder = Rudder()
+        controller = None
+        if setup.rudder == "autopilot":
+            nomoto = nomoto_from_models(
+                hull, [*out, rudder], setup.speed, added_mass=a_lhs, commands=commands
+            )
+            controller = HeadingAutopilot.from_nomoto(nomoto)
+        out.append(Actuated(rudder, RUDDER_SERVO, "rudder", controller=controller))
+    if setup.fins != "none":
+        fins = RollFins()
+        controller = None
+        if setup.fins == "controller":
+            k_delta = control_derivative(fins, "fins", 3, max(setup.speed, 1.0))
+            controller = FinController.tuned(k_delta, c[3, 3], mass[3, 3])
+        out.append(Actuated(fins, FIN_SERVO, "fins", controller=controller))
+    if setup.t_foil != "none":
+        foil = TFoil()
+        controller = None
+        if setup.t_foil == "controller":
+            u = max(setup.speed, 1.0)
+            controller = RideController.tuned(
+                control_derivative(foil, "t_foil", 2, u),
+                control_derivative(foil, "t_foil", 4, u),
+                c[2, 2],
+                mass[2, 2],
+                c[4, 4],
+                mass[4, 4],
+            )
+        out.append(Actuated(foil, FOIL_SERVO, "t_foil", controller=controller))
+    return out, commands
 
 
 def build_simulator(
@@ -214,7 +304,7 @@ def build_simulator(
     hull = load_hull(setup.hull, **setup.hull_overrides)
     database = load_database(setup.database)
     wave_field = wave_field_for(sea, wave_heading, rng)
-    models = build_force_models(setup, hull, database, wave_field, sea, wave_heading)
+    models, commands = build_force_models(setup, hull, database, wave_field, sea, wave_heading)
     lumped_a = None
     if setup.lumped:
         lumped_a = next(m for m in models if isinstance(m, RadiationMemory)).A_inf
@@ -228,6 +318,7 @@ def build_simulator(
         free_dofs=setup.free_dofs,
         lumped_added_mass=lumped_a,
     )
+    sim.commands = dict(commands)
     eq = equilibrium(hull)
     sim.reset(eta=np.array([0.0, 0.0, eq.heave, 0.0, eq.trim, 0.0]))
     return sim

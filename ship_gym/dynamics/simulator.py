@@ -257,6 +257,9 @@ class Simulator:
     def step(self, commands: dict | None = None) -> None:
         """Advance by one physics step ``dt`` (commands held constant over the step).
 
+        ``commands`` are merged into the current ones: a command stays in force until changed
+        (e.g. the shaft speed set when the ship was built).
+
         Raises
         ------
         SimulationDiverged
@@ -264,7 +267,7 @@ class Simulator:
             keeps the state of the start of the step.
         """
         if commands is not None:
-            self.commands = commands
+            self.commands = {**self.commands, **commands}
         rhs: Callable = (
             self._rhs_holloway if self.integrator_name == "holloway" else self._rhs_explicit
         )

@@ -51,6 +51,10 @@ class ForceContext:
         (6,) extrapolated ν̇ₑ for Holloway's lumped mode, else None.
     commands : dict
         Actuator commands (rudder angle [rad], fin angles [rad], shaft speed [rev/s], …).
+    shared : dict
+        Quantities that a model derives during this evaluation for models after it in the
+        simulator's list (models are evaluated in list order), e.g. ``"propeller_thrust"`` [N]
+        published by the propeller for the rudder's slipstream. Fresh at every evaluation.
     """
 
     t: float
@@ -61,6 +65,7 @@ class ForceContext:
     wave_phasor: np.ndarray | None = None
     acceleration_extrapolated: np.ndarray | None = None
     commands: dict = field(default_factory=dict)
+    shared: dict = field(default_factory=dict)
 
 
 class ForceModel:

@@ -761,6 +761,7 @@ class Propeller(ForceModel):
         """
         op = self.operating_point(float(ctx.nu[SURGE]), self._command(ctx))
         self.last_operating_point = op
+        ctx.shared["propeller_thrust"] = op.thrust  # for the rudder's slipstream (evaluated later)
         x = op.surge_force
         force = np.zeros(6)
         force[SURGE] = x

@@ -44,7 +44,9 @@ one with the same dynamic pressure,
 
     u_R = √(f V_x² + (1 − f) u_A²).                                                  (4)
 
-The thrust comes, in that order, from ``ctx.commands["propeller_thrust"]`` [N] (thrust of the
+The thrust comes, in that order, from ``ctx.shared["propeller_thrust"]`` (published by a
+:class:`~ship_gym.forces.propeller.Propeller` evaluated before the rudder), from
+``ctx.commands["propeller_thrust"]`` [N] (thrust of the
 propeller ahead of *each* rudder), from ``ctx.commands["propeller_thrust_coefficient"]`` (C_Th),
 or from the constructor's ``thrust_coefficient``. **With none of them the rudder sees the hull
 wake only** (eq. 1), which under-predicts the rudder force of a self-propelled ship (C_Th ≈ 1–2
@@ -314,6 +316,8 @@ class Rudder(ForceModel):
     def _thrust(self, ctx: ForceContext, u_a: float) -> float:
         """Thrust of the propeller ahead of each rudder [N] (0: wake only)."""
         cmd = ctx.commands
+        if "propeller_thrust" in ctx.shared:  # published by a Propeller evaluated before
+            return _finite('shared["propeller_thrust"]', ctx.shared["propeller_thrust"])
         if "propeller_thrust" in cmd:
             return _finite('commands["propeller_thrust"]', cmd["propeller_thrust"])
         c_th = cmd.get("propeller_thrust_coefficient", self.thrust_coefficient)

@@ -36,7 +36,7 @@ def s175():
 
 def _yaw_sim(hull, model, autopilot=None, servo=RUDDER_SERVO, dt=0.1):
     inertia = hull.mass.rigid_body_matrix()[5, 5]
-    steering = Actuated(NomotoYaw(inertia, model), servo, "rudder", autopilot=autopilot)
+    steering = Actuated(NomotoYaw(inertia, model), servo, "rudder", controller=autopilot)
     # only yaw is free: buoyancy and weight act on held DOFs, so no hydrostatics is needed
     sim = Simulator(hull, [steering], dt=dt, free_dofs=[0, 0, 0, 0, 0, 1])
     eq = equilibrium(hull)

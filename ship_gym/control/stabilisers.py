@@ -1,0 +1,173 @@
+"""Classical roll-fin and ride-control (T-foil) controllers: the baselines RL must beat.
+
+Fin stabiliser (sign of :class:`~ship_gym.forces.fins.RollFins`: a positive command gives a
+positive, starboard-down roll moment), PID on roll angle and rate:
+
+    δ_c = −(k_φ φ + k_p p + k_i ∫φ dt).
+
+Sized like a classical analogue stabiliser: the rate gain adds a chosen fraction ζ_add of
+critical roll damping, k_p = 2 ζ_add √(C₄₄ (I₄₄ + A₄₄)) / K_δ, and the angle gain a fraction of
+the hydrostatic stiffness, k_φ = c_add C₄₄ / K_δ, with K_δ = ∂K/∂δ of the fins at the ship's speed
+(linearised from the fin model itself, so the tuning follows the fin size and speed).
+
+Ride control (T-foil: positive command gives an upward force, F_z < 0, and a bow-up moment):
+damp heave velocity and pitch rate,
+
+    δ_c = k_w w − k_q q,
+
+with k_w = 2 ζ_w √(C₃₃ (m + A₃₃)) / |∂F_z/∂δ| and k_q = 2 ζ_q √(C₅₅ (I₅₅ + A₅₅)) / |∂M/∂δ|.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ship_gym.forces.base import ForceContext, ForceModel
+from ship_gym.kinematics import rotation_matrix
+
+
+def control_derivative(model: ForceModel, key: str, dof: int, speed: float) -> float:
+    """∂(force in ``dof``)/∂(angle) of a surface model at a straight run at ``speed`` [per rad].
+
+    Central difference over ±1° about zero angle (linear range of every surface).
+    """
+    h = np.radians(1.0)
+    values = []
+    for angle in (-h, h):
+        ctx = ForceContext(
+            t=0.0,
+            eta=np.zeros(6),
+            nu=np.array([speed, 0.0, 0.0, 0.0, 0.0, 0.0]),
+            rotation=rotation_matrix(0.0, 0.0, 0.0),
+            forward_speed=speed,
+            commands={key: angle},
+        )
+        values.append(model.evaluate(ctx, np.zeros(0))[0][dof])
+    return float((values[1] - values[0]) / (2 * h))
+
+
+@dataclass(frozen=True)
+class FinController:
+    """PID roll stabiliser δ_c = −(k_φ φ + k_p p + k_i ∫φ).
+
+    Parameters
+    ----------
+    k_roll : float
+        Angle gain k_φ [rad/rad].
+    k_rate : float
+        Rate gain k_p [rad·s/rad].
+    k_integral : float
+        Integral gain k_i [rad/(rad·s)] (0: PD, the usual choice — roll has no steady error
+        to remove except under a steady heeling moment).
+    """
+
+    k_roll: float
+    k_rate: float
+    k_integral: float = 0.0
+
+    n_states = 1
+
+    @classmethod
+    def tuned(
+        cls,
+        fin_moment_per_rad: float,
+        c44: float,
+        i44_total: float,
+        *,
+        added_damping: float = 0.3,
+        added_stiffness: float = 0.2,
+    ) -> FinController:
+        """Gains from the roll model (see the module docstring).
+
+        Parameters
+        ----------
+        fin_moment_per_rad : float
+            K_δ = ∂K/∂δ of the fin pair at speed [N·m/rad] (> 0).
+        c44 : float
+            Roll restoring C₄₄ [N·m/rad].
+        i44_total : float
+            I₄₄ + A₄₄ [kg·m²].
+        added_damping, added_stiffness : float
+            ζ_add [-] and c_add [-] (fractions of critical damping and of C₄₄).
+        """
+        if not fin_moment_per_rad > 0.0:
+            raise ValueError(
+                f"fin_moment_per_rad must be positive (fins at speed), got {fin_moment_per_rad!r}"
+            )
+        k_rate = 2.0 * added_damping * np.sqrt(c44 * i44_total) / fin_moment_per_rad
+        return cls(k_roll=added_stiffness * c44 / fin_moment_per_rad, k_rate=k_rate)
+
+    def initial(self, ctx: ForceContext) -> dict:
+        """Nothing to remember."""
+        return {}
+
+    def command(self, ctx: ForceContext, states: np.ndarray, initial: dict) -> float:
+        """δ_c [rad]."""
+        return -(self.k_roll * ctx.eta[3] + self.k_rate * ctx.nu[3] + self.k_integral * states[0])
+
+    def state_rates(
+        self,
+        ctx: ForceContext,
+        states: np.ndarray,
+        initial: dict,
+        command: float,
+        achievable: float,
+    ) -> np.ndarray:
+        """d/dt ∫φ (frozen while the fins saturate: conditional integration)."""
+        return np.array([0.0 if achievable != command else float(ctx.eta[3])])
+
+
+@dataclass(frozen=True)
+class RideController:
+    """T-foil ride control δ_c = k_w w − k_q q (heave-velocity and pitch-rate damping).
+
+    Parameters
+    ----------
+    k_heave : float
+        Gain on the heave velocity w [rad/(m/s)].
+    k_pitch : float
+        Gain on the pitch rate q [rad/(rad/s)].
+    """
+
+    k_heave: float
+    k_pitch: float
+
+    n_states = 0
+
+    @classmethod
+    def tuned(
+        cls,
+        heave_force_per_rad: float,
+        pitch_moment_per_rad: float,
+        c33: float,
+        m33_total: float,
+        c55: float,
+        i55_total: float,
+        *,
+        added_damping: float = 0.2,
+    ) -> RideController:
+        """Gains adding ``added_damping`` of critical damping in heave and in pitch."""
+        k_w = 2 * added_damping * np.sqrt(c33 * m33_total) / abs(heave_force_per_rad)
+        k_q = 2 * added_damping * np.sqrt(c55 * i55_total) / abs(pitch_moment_per_rad)
+        return cls(k_heave=float(k_w), k_pitch=float(k_q))
+
+    def initial(self, ctx: ForceContext) -> dict:
+        """Nothing to remember."""
+        return {}
+
+    def command(self, ctx: ForceContext, states: np.ndarray, initial: dict) -> float:
+        """δ_c [rad]."""
+        return self.k_heave * float(ctx.nu[2]) - self.k_pitch * float(ctx.nu[4])
+
+    def state_rates(
+        self,
+        ctx: ForceContext,
+        states: np.ndarray,
+        initial: dict,
+        command: float,
+        achievable: float,
+    ) -> np.ndarray:
+        """No states."""
+        return np.zeros(0)
