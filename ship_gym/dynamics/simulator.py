@@ -103,8 +103,9 @@ class Simulator:
     free_dofs : sequence of bool, optional
         (6,) which DOFs are integrated; held DOFs keep their initial velocity.
     mu : array_like, optional
-        Holloway blending factors per DOF; default m/(m + A_e) with A_e the diagonal of the
-        added mass on the left-hand side, or ``lumped_added_mass`` in lumped mode.
+        Holloway blending factors per DOF; default 1 (exact acceleration) unless a force model
+        lumps added mass into the force, then m/(m + A_e) with A_e the diagonal of
+        ``lumped_added_mass`` (Holloway eq. 4).
     lumped_added_mass : numpy.ndarray, optional
         (6, 6) added mass that a lumped-mode force model puts in the force (Holloway eq. 10);
         only used for the default μ.
@@ -160,10 +161,14 @@ class Simulator:
         elif integrator == "abm":
             self.integrator = AdamsBashforthMoulton(self.dt, kinematics=kinematics)
         elif integrator == "holloway":
-            if mu is None:
-                a_e = np.diag(a_lhs if lumped_added_mass is None else lumped_added_mass)
+            if mu is None and lumped_added_mass is None:
+                # the acceleration is exact (added mass on the left): no blending needed, and
+                # μ < 1 only adds error (Holloway 2007: errors vanish at μ = m/(m + A) where A
+                # is the added mass *hidden in the force*, here none)
+                mu = np.ones(6)
+            elif mu is None:
                 m_d = np.diag(self.mass_rb)
-                mu = m_d / (m_d + a_e)
+                mu = m_d / (m_d + np.diag(lumped_added_mass))
             self.integrator = HollowayIntegrator(
                 self.dt, np.asarray(mu, float), kinematics=kinematics
             )
