@@ -503,15 +503,15 @@ def _stale_headings(ships, psi, psi_ref, u_ref, speed, tol, out):  # pragma: no 
 
 
 @nb.njit(cache=True)
-def _diffraction_rows(ships, local, xd, out):  # pragma: no cover - compiled
-    """F_D = Re Σⱼ conj(c'ⱼ) X_D,ⱼ per row (X_D cached per ship)."""
+def _diffraction_rows(ships, local, xd, dxd, dpsi, out):  # pragma: no cover - compiled
+    """F_D = Re Σⱼ conj(c'ⱼ) (X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ) per row (X_D cached per ship)."""
     for r in range(ships.shape[0]):
         s = ships[r]
         for k in range(6):
             acc = 0.0
             for j in range(local.shape[1]):
                 c = local[r, j]
-                x = xd[s, j, k]
+                x = xd[s, j, k] + dpsi[r] * dxd[s, j, k]
                 acc += c.real * x.real + c.imag * x.imag
             out[r, k] = acc
 
@@ -545,6 +545,7 @@ class BatchDiffraction(BatchForceModel):
         self._psi_ref = np.full(n_ships, np.nan)
         self._u_ref = np.full(n_ships, np.nan)
         self._xd = np.zeros((n_ships, n_comp, 6), dtype=complex)
+        self._dxd = np.zeros((n_ships, n_comp, 6), dtype=complex)
 
     def reset(self, ships: NDArray[np.int64], ctx: BatchContext) -> None:
         self._psi_ref[ships] = np.nan
@@ -552,13 +553,10 @@ class BatchDiffraction(BatchForceModel):
 
     def _refresh(self, ships: NDArray[np.int64], psi: NDArray, ctx: BatchContext, rows) -> None:
         w = ctx.waves
-        beta = np.mod(w.direction[rows] - psi[:, None], _TWO_PI)
         speed = ctx.forward_speed
-        if self._encounter:
-            omega = w.omega[rows] - w.wavenumber[rows] * speed * np.cos(beta)
-        else:
-            omega = w.omega[rows]
-        self._xd[ships] = self.template.diffraction_transfer(omega, beta)
+        self._xd[ships], self._dxd[ships], _, _ = self.template.heading_expansion(
+            w.direction[rows], w.omega[rows], w.wavenumber[rows], psi[:, None], speed
+        )
         self._psi_ref[ships] = psi
         self._u_ref[ships] = speed
 
@@ -572,7 +570,8 @@ class BatchDiffraction(BatchForceModel):
             rows = np.flatnonzero(stale)
             self._refresh(ctx.ships[rows], psi[rows], ctx, rows)
         force = np.empty((ctx.n, 6))
-        _diffraction_rows(ctx.ships, ctx.local_phasor, self._xd, force)
+        dpsi = np.mod(psi - self._psi_ref[ctx.ships] + np.pi, _TWO_PI) - np.pi
+        _diffraction_rows(ctx.ships, ctx.local_phasor, self._xd, self._dxd, dpsi, force)
         return force, _no_states(ctx.n)
 
 
@@ -994,6 +993,7 @@ class BatchSimulator:
         self._free_idx = idx
         self._m_free_inv_t = np.linalg.inv((self.mass_rb + a_lhs)[np.ix_(idx, idx)]).T.copy()
         self._all_free = bool(self.free.all())
+        self._held_angles = ~self.free[3:]
         self._weight = float(hull.mass.mass * hull.g)
         self._cog = np.asarray(hull.mass.cog, float)
         sizes = [int(f.n_states) for f in self.forces]
@@ -1092,6 +1092,7 @@ class BatchSimulator:
         rigid = np.empty((n, 6))
         qdot = np.empty((n, 6))
         _ship_terms(eta, nu, self.mass_rb, self._weight, self._cog, rot, rigid, qdot)
+        qdot[:, 3:][:, self._held_angles] = 0.0  # a held rotation holds its Euler angle
         seas = self._seas
         if all_ships:
             waves = self._waves_all

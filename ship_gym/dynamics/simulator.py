@@ -13,7 +13,8 @@ may instead be *lumped* into the force with the extrapolated acceleration (Hollo
 blending factor μ then stabilises the explicit step (Holloway eq. 4, default μ = m/(m + A_e)).
 
 Degrees of freedom can be held (``free_dofs``): a held DOF keeps its initial velocity (e.g. a
-steady forward speed in surge) and its force equation is dropped.
+steady forward speed in surge) and its force equation is dropped; a held rotation also keeps its
+Euler angle fixed.
 """
 
 from __future__ import annotations
@@ -26,7 +27,8 @@ import numpy as np
 
 from ship_gym.conventions import DOF_NAMES
 from ship_gym.dynamics.integrators import RK4, AdamsBashforthMoulton, HollowayIntegrator
-from ship_gym.dynamics.rigid_body import coriolis_force, gravity_force, kinematics
+from ship_gym.dynamics.rigid_body import coriolis_force, gravity_force
+from ship_gym.dynamics.rigid_body import kinematics as rigid_kinematics
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.hull.hull import Hull
 from ship_gym.kinematics import rotation_matrix
@@ -156,6 +158,17 @@ class Simulator:
         self._slices = [slice(bounds[i], bounds[i + 1]) for i in range(len(self.forces))]
         self.n_states = int(bounds[-1])
         self.integrator_name = integrator
+        held_angles = ~self.free[3:]
+        if held_angles.any():
+            # a held rotation holds its Euler angle (not only its body rate: with φ, θ ≠ 0 the
+            # Euler-rate matrix would still turn a ship whose yaw rate r is held at 0)
+            def kinematics(eta: np.ndarray, nu: np.ndarray) -> np.ndarray:
+                rate = rigid_kinematics(eta, nu)
+                rate[3:][held_angles] = 0.0
+                return rate
+
+        else:
+            kinematics = rigid_kinematics
         if integrator == "rk4":
             self.integrator = RK4(self.dt, kinematics=kinematics)
         elif integrator == "abm":

@@ -63,10 +63,12 @@ Interpolation and caching
 The database headings are completed to the full circle by
 :func:`ship_gym.hydro.database.mirror_headings` (port–starboard symmetry) and extended
 periodically; X_D is interpolated bilinearly in (ω, β) on the real and imaginary parts (exact at
-database nodes). The per-component values X_D(ω'ⱼ, βⱼ) are cached and recomputed only when the
-heading ψ has moved by more than ``heading_tolerance_deg`` (default 0.5°) since the last
-update, or U changed: the error is at most ≈ |∂X_D/∂β|·0.5° (< 1 % for 15° data spacing). The
-folding of the phasors to O is exact at every evaluation (n complex exponentials).
+database nodes). The per-component values X_D(ω'ⱼ, βⱼ) and their heading derivatives are
+cached and recomputed only when the heading ψ has moved by more than ``heading_tolerance_deg``
+(default 0.5°) since the last update, or U changed; in between, X_D + (ψ − ψ_ref) ∂X_D/∂ψ is used,
+so the force is continuous in ψ and a refresh changes it only by the O(Δψ²) curvature term (a
+plain cache would jump by O(Δψ) and cap time-integration accuracy, as the convergence study
+showed). The folding of the phasors to O is exact at every evaluation (n complex exponentials).
 
 Frame
 -----
@@ -199,6 +201,7 @@ class Diffraction(ForceModel):
         self._ky = np.asarray(w.ky, dtype=float)
         self._n = w.n_components
         self._xd = np.zeros((self._n, N_DOF), dtype=complex)
+        self._dxd = np.zeros((self._n, N_DOF), dtype=complex)
         self._psi_ref: float | None = None
         self._u_ref: float | None = None
         self.n_above_range: int = 0
@@ -269,14 +272,55 @@ class Diffraction(ForceModel):
         out[neg] = np.conj(out[neg])
         return out.reshape(*shape, N_DOF)
 
+    def heading_expansion(
+        self,
+        direction: np.ndarray,
+        omega: np.ndarray,
+        wavenumber: np.ndarray,
+        psi: np.ndarray | float,
+        speed: float,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """X_D(ω'ⱼ, βⱼ) at heading ψ and its derivative ∂X_D/∂ψ, for any leading shape.
+
+        Parameters
+        ----------
+        direction, omega, wavenumber : numpy.ndarray
+            (..., n) component directions χⱼ [rad], frequencies [rad/s], wavenumbers [rad/m].
+        psi : numpy.ndarray or float
+            Heading(s) ψ [rad], broadcast against the leading shape (e.g. (n_ships, 1)).
+        speed : float
+            Forward speed U [m/s].
+
+        Returns
+        -------
+        x, dx : numpy.ndarray
+            (..., n, 6) X_D and ∂X_D/∂ψ (central difference over the heading tolerance band).
+        omega_lookup, beta : numpy.ndarray
+            (..., n) the frequencies and relative headings used.
+        """
+
+        def at(heading: np.ndarray | float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            beta = np.mod(np.asarray(direction, dtype=float) - heading, _TWO_PI)
+            if self.frequency == "encounter":
+                w = omega - wavenumber * speed * np.cos(beta)
+            else:
+                w = np.asarray(omega, dtype=float)
+            return self.diffraction_transfer(w, beta), w, beta
+
+        x, w, beta = at(psi)
+        h = max(self._heading_tol, 1e-4)
+        dx = (at(np.asarray(psi) + h)[0] - at(np.asarray(psi) - h)[0]) / (2.0 * h)
+        return x, dx, w, beta
+
     def _update(self, psi: float, speed: float) -> None:
+        # X_D at the reference heading and its heading derivative: between refreshes the force
+        # follows X_D + (ψ − ψ_ref) ∂X_D/∂ψ, so it is continuous in ψ; a refresh changes it only
+        # by the O(Δψ²) curvature of the interpolated transfer functions (instead of an O(Δψ)
+        # jump that would cap the integrators' accuracy)
         w = self.wave_field
-        beta = np.mod(np.asarray(w.direction, dtype=float) - psi, _TWO_PI)
-        if self.frequency == "encounter":
-            omega = w.omega - w.wavenumber * speed * np.cos(beta)
-        else:
-            omega = np.asarray(w.omega, dtype=float)
-        self._xd = self.diffraction_transfer(omega, beta)
+        self._xd, self._dxd, omega, beta = self.heading_expansion(
+            w.direction, w.omega, w.wavenumber, psi, speed
+        )
         self.omega_lookup = omega
         self.beta_lookup = beta
         self.n_above_range = int(np.count_nonzero(np.abs(omega) > self.omega[-1] * (1 + 1e-12)))
@@ -332,5 +376,6 @@ class Diffraction(ForceModel):
         ):
             self._update(psi, speed)
         folded = c * np.exp(-1j * (self._kx * eta[0] + self._ky * eta[1]))
-        force = (folded.conj() @ self._xd).real
+        dpsi = (psi - self._psi_ref + math.pi) % _TWO_PI - math.pi
+        force = (folded.conj() @ (self._xd + dpsi * self._dxd)).real
         return force, empty
