@@ -15,10 +15,14 @@ which integrates the hydrostatic part exactly; in calm water this is the same in
 Two implementations, which the tests hold to 1e-6 relative agreement:
 
 * ``method="fast"``: a numba kernel that evaluates the wave once per *vertex* (elevation and
-  pressure share the per-component phasors), with branch-free polynomial sin/cos/exp that LLVM
-  vectorises (:mod:`ship_gym.forces.fastmath`), and the time factor and the ship's horizontal
-  position folded into one complex amplitude per component (no trig per component per step in
-  Python). A batched variant loops over many ships in one call.
+  pressure share the per-component spatial terms), with branch-free polynomial sin/cos/exp that
+  LLVM vectorises across vertices (:mod:`ship_gym.forces.fastmath`), and the time factor and the
+  ship's horizontal position folded into one modulus and phase per component. The integration
+  counts every triangle as wet through precomputed per-vertex weights and corrects only the
+  triangles that cross the surface. The polynomials run at the floating-point throughput limit
+  (details in the comments of the kernel section; ``scripts/bench_froude_krylov.py``). A
+  batched variant evaluates many ships in one call, optionally with numba threads
+  (``parallel=True``).
 * ``method="reference"``: plain numpy (``np.cos``/``np.exp`` on the vertex × component matrix)
   with :func:`ship_gym.hull.mesh.clip_triangles` and
   :func:`ship_gym.hull.mesh.pressure_resultant`.
@@ -26,14 +30,14 @@ Two implementations, which the tests hold to 1e-6 relative agreement:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal
 
 import numba as nb
 import numpy as np
 
 from ship_gym.forces.base import ForceContext, ForceModel
-from ship_gym.forces.fastmath import exp_neg, sincos
+from ship_gym.forces.fastmath import cos_turns, exp2_neg
 from ship_gym.hull.hull import Hull
 from ship_gym.hull.mesh import PanelMesh, clip_triangles, pressure_resultant
 from ship_gym.waves.wave_field import WaveField
@@ -51,10 +55,26 @@ class HullPanels:
         (n_vertices, 3) body-frame coordinates [m], C-contiguous float64.
     triangles : numpy.ndarray
         (n_triangles, 3) vertex indices (outward normals), int64.
+
+    Notes
+    -----
+    On construction the arrays are converted to that layout and the fast kernel's own layout is
+    derived once (vertex order by depth, per-vertex integration weights, neighbour extents):
+    build one ``HullPanels`` per hull and reuse it.
     """
 
     vertices: np.ndarray
     triangles: np.ndarray
+    _layout: _KernelLayout = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        v = np.ascontiguousarray(self.vertices, dtype=np.float64)
+        tri = np.ascontiguousarray(self.triangles, dtype=np.int64)
+        if v.ndim != 2 or v.shape[1] != 3 or tri.ndim != 2 or tri.shape[1] != 3:
+            raise ValueError(f"expected (n, 3) vertices and triangles, got {v.shape}, {tri.shape}")
+        object.__setattr__(self, "vertices", v)
+        object.__setattr__(self, "triangles", tri)
+        object.__setattr__(self, "_layout", _KernelLayout.build(v, tri))
 
     @classmethod
     def from_mesh(cls, mesh: PanelMesh) -> HullPanels:
@@ -111,179 +131,478 @@ class WaveComponents:
 
 
 # ----------------------------------------------------------------------------- fast kernel
-@nb.njit(fastmath={"contract", "nsz"}, cache=True)
-def _fk_one_ship(
-    vb: np.ndarray,
-    tri: np.ndarray,
-    rot: np.ndarray,
-    z0: float,
-    k: np.ndarray,
-    cx: np.ndarray,
-    sx: np.ndarray,
-    cre: np.ndarray,
-    cim: np.ndarray,
-    rho_g: float,
-    out: np.ndarray,
+# Layout and flags (DESIGN.md §5; measured on a 2-core AVX2/FMA machine with
+# scripts/bench_froude_krylov.py):
+#
+# * Vertices are processed in blocks of _BLOCK, *components in the outer loop and vertices in the
+#   inner loop*: every hot loop vectorises across vertices, with no reduction over components, so
+#   no "reassoc" flag is needed anywhere (results do not depend on the vector width) and there is
+#   no per-vertex loop overhead (horizontal sums, remainders). The spatial term of each
+#   (component, vertex) pair, Re cⱼ e^{−iθ}, is computed once, kept in a block buffer, and shared
+#   by the elevation sum and the pressure sum. The inner loops are small @njit functions called
+#   with offsets (no slices, whose array objects cost reference counting per call) and unsigned
+#   indices (numba's negative-index wraparound costs ~30 % in these loops).
+# * Phases are formed in turns (kⱼ cos χⱼ / 2π per call), and each component enters as modulus
+#   and phase offset, Re cⱼ e^{−iθ} = |cⱼ| cos(θ − arg cⱼ): the spatial term is one cosine
+#   (:func:`~ship_gym.forces.fastmath.cos_turns`: range reduction by one exact subtraction, one
+#   even polynomial, two cosine-only angle doublings; 13 multiply/FMA operations per pair with
+#   the phase, against 22 with sin and cos). The decay e^{−k d} = 2^{−(k/ln2) d} needs no
+#   Cody–Waite step either (:func:`~ship_gym.forces.fastmath.exp2_neg`; 13 operations per pair
+#   with the product and the sum). Both are the "kernel tier" polynomials of fastmath (errors
+#   ≲ 1e-12; forces within ~1e-13 of the libm reference; 12 % faster than the few-ulp ones).
+#   The FMA units execute these at ≈ 0.8–1 ns per pair: the kernel runs at that limit
+#   (not memory- or overhead-bound: two components per loop, other block sizes or fewer stores
+#   change nothing measurable).
+# * The kernel's vertex order is sorted by body z (:class:`_KernelLayout`), so the vertices of a
+#   pressure sub-block (_SUB) tend to be all wet or all dry: the decayed sum runs over the wet
+#   range of each sub-block only (dry vertices inside it are evaluated with d = 0 and discarded;
+#   ~18 % extra pairs for the S175 in a 4 m sea). Its rows are padded to whole vectors.
+# * Exact skips: the top of the hull (a tail of the kernel order) where the vertices and all
+#   their mesh neighbours lie above the highest possible crest Σ|cⱼ| needs no wave sums (for the
+#   upright S175: a third of the vertices in calm water, a sixth for Σ|cⱼ| = 3.5 m; none in a 4 m
+#   sea of 50 components, Σ|cⱼ| ≈ 14 m);
+#   components with e^{−kⱼ d} < 2^−54 over a whole sub-block are left out of its pressure sum
+#   (relative contribution < 6e-17); only the triangles whose vertex range spans both the first
+#   dry and the last wet vertex are examined for a crossing.
+# * Integration: −∫p n dS and −∫p r × n dS are linear in the vertex pressures, so the fully wet
+#   triangles are summed as −Σᵥ pᵥ wᵥ with per-vertex weights precomputed in the body frame; the
+#   crossing triangles replace their whole-triangle term by their cut part (≈ 15 µs in all).
+# * Work arrays are allocated per call inside the kernel (≈ 1 µs); there is no shared mutable
+#   state, the kernels release the GIL (nogil), and concurrent calls from Python threads are safe.
+# * Threads: the default is serial. ``parallel=True`` in the batch runs a numba prange over ships
+#   (numba's OpenMP layer, ``NUMBA_NUM_THREADS`` = cores). torch's intra-op pool in the same
+#   process competes for the same cores (two OpenMP runtimes, whose workers spin for a while
+#   after each parallel region), and so does anything else running on the machine: a parallel
+#   region waits for its slowest thread, so on a busy 2-core machine one call can take a whole
+#   scheduler slice (milliseconds). For RL training on few cores keep the default and run
+#   environments in separate processes, or give the pools disjoint shares (numba.set_num_threads
+#   / torch.set_num_threads) and benchmark that setting
+#   (``scripts/bench_froude_krylov.py --parallel --torch``).
+_FM = {"contract", "nsz"}
+_BLOCK = 256  # vertices per elevation block (a multiple of _SUB)
+_SUB = 64  # vertices per pressure sub-block (a multiple of 4)
+_INV_TWO_PI = 1.0 / (2.0 * np.pi)
+_INV_LN2 = 1.0 / np.log(2.0)
+_DECAY_CUTOFF = 54.0
+
+
+@dataclass(frozen=True, eq=False)
+class _KernelLayout:
+    """Vertex order and derived arrays of a hull for the fast kernel (built once per hull)."""
+
+    order: np.ndarray  # (n_v,) kernel index → original vertex index (sorted by body z)
+    body: np.ndarray  # (3, n_v) body coordinates in kernel order (structure of arrays)
+    triangles: np.ndarray  # (n_t, 3) triangles in kernel vertex indices, by largest index
+    tri_last: np.ndarray  # (n_t,) largest kernel vertex index of each triangle (ascending)
+    tri_first: np.ndarray  # (n_t,) smallest kernel vertex index of each triangle
+    spread: np.ndarray  # (6, n_v) min (rows 0-2) and max (3-5) of b_u − b_v over neighbours u
+    weights: np.ndarray  # (6, n_v) force/moment per unit vertex pressure, all triangles wet
+
+    @classmethod
+    def build(cls, vertices: np.ndarray, triangles: np.ndarray) -> _KernelLayout:
+        order = np.argsort(-vertices[:, 2], kind="stable")
+        rank = np.empty_like(order)
+        rank[order] = np.arange(order.size)
+        tri = rank[triangles]
+        tri = np.ascontiguousarray(tri[np.argsort(tri.max(axis=1), kind="stable")], dtype=np.int64)
+        tri_last = np.ascontiguousarray(tri.max(axis=1))
+        tri_first = np.ascontiguousarray(tri.min(axis=1))
+        body = np.ascontiguousarray(vertices[order].T, dtype=np.float64)
+        spread = np.zeros((6, order.size))
+        for a, b in ((0, 1), (1, 2), (2, 0), (1, 0), (2, 1), (0, 2)):
+            edge = body[:, tri[:, b]] - body[:, tri[:, a]]
+            for q in range(3):
+                np.minimum.at(spread[q], tri[:, a], edge[q])
+                np.maximum.at(spread[3 + q], tri[:, a], edge[q])
+        # With p linear on a triangle (area vector N), −∫p n dS = −Σᵢ pᵢ N/3 and
+        # −∫p r × n dS = −Σᵢ pᵢ (rᵢ + Σⱼrⱼ) × N/12: summed over the triangles at each vertex, the
+        # force and moment of the fully wet triangles are −Σᵥ pᵥ wᵥ in the body frame.
+        r = body[:, tri]  # (3, n_t, 3)
+        area = 0.5 * np.cross(r[:, :, 1] - r[:, :, 0], r[:, :, 2] - r[:, :, 0], axis=0)
+        rsum = r.sum(axis=2)
+        weights = np.zeros((6, order.size))
+        for i in range(3):
+            arm = np.cross(r[:, :, i] + rsum, area, axis=0) / 12.0
+            for q in range(3):
+                np.add.at(weights[q], tri[:, i], area[q] / 3.0)
+                np.add.at(weights[3 + q], tri[:, i], arm[q])
+        return cls(order, body, tri, tri_last, tri_first, spread, weights)
+
+
+@nb.njit(fastmath=_FM, cache=True)
+def _spatial_row(
+    a: float,
+    b: float,
+    p: float,
+    m: float,
+    rx: np.ndarray,
+    ry: np.ndarray,
+    v0: int,
+    spatial: np.ndarray,
+    s0: int,
+    zeta: np.ndarray,
+    n: int,
 ) -> None:  # pragma: no cover - compiled
-    n_v = vb.shape[0]
-    n_c = k.shape[0]
-    rel = np.empty((n_v, 3))
-    depth = np.empty(n_v)
-    pres = np.empty(n_v)
-    cbuf = np.empty(n_c)
-    sbuf = np.empty(n_c)
-    for v in range(n_v):
-        bx, by, bz = vb[v, 0], vb[v, 1], vb[v, 2]
-        rx = rot[0, 0] * bx + rot[0, 1] * by + rot[0, 2] * bz
-        ry = rot[1, 0] * bx + rot[1, 1] * by + rot[1, 2] * bz
-        rz = rot[2, 0] * bx + rot[2, 1] * by + rot[2, 2] * bz
-        rel[v, 0] = rx
-        rel[v, 1] = ry
-        rel[v, 2] = rz
-        zabs = z0 + rz
-        _phasors(rx, ry, k, cx, sx, cbuf, sbuf)
-        d = zabs + _dot2(cre, cbuf, cim, sbuf)
-        depth[v] = d
-        pres[v] = rho_g * (zabs + _decayed_dot2(k, d, cre, cbuf, cim, sbuf)) if d >= 0.0 else 0.0
-    pa = np.empty((3, 3))
-    pp = np.empty(3)
-    for t in range(tri.shape[0]):
-        i0, i1, i2 = tri[t, 0], tri[t, 1], tri[t, 2]
-        d0, d1, d2 = depth[i0], depth[i1], depth[i2]
-        w0, w1, w2 = d0 >= 0.0, d1 >= 0.0, d2 >= 0.0
-        n_wet = int(w0) + int(w1) + int(w2)
-        if n_wet == 0:
-            continue
-        # rotate so that the "odd" vertex (lone wet or lone dry) comes first
-        if n_wet == 3 or (n_wet == 1 and w0) or (n_wet == 2 and not w0):
-            a, b, c = i0, i1, i2
-        elif (n_wet == 1 and w1) or (n_wet == 2 and not w1):
-            a, b, c = i1, i2, i0
-        else:
-            a, b, c = i2, i0, i1
-        if n_wet == 3:
-            for q in range(3):
-                pa[0, q] = rel[a, q]
-                pa[1, q] = rel[b, q]
-                pa[2, q] = rel[c, q]
-            pp[0], pp[1], pp[2] = pres[a], pres[b], pres[c]
-            _accumulate(pa, pp, out)
-            continue
-        da, db, dc = depth[a], depth[b], depth[c]
-        sab = da / (da - db)
-        sac = da / (da - dc)
-        if n_wet == 1:
-            for q in range(3):
-                pa[0, q] = rel[a, q]
-                pa[1, q] = rel[a, q] + sab * (rel[b, q] - rel[a, q])
-                pa[2, q] = rel[a, q] + sac * (rel[c, q] - rel[a, q])
-            pp[0], pp[1], pp[2] = pres[a], 0.0, 0.0
-            _accumulate(pa, pp, out)
-        else:
-            for q in range(3):
-                pa[0, q] = rel[a, q] + sab * (rel[b, q] - rel[a, q])
-                pa[1, q] = rel[b, q]
-                pa[2, q] = rel[c, q]
-            pp[0], pp[1], pp[2] = 0.0, pres[b], pres[c]
-            _accumulate(pa, pp, out)
-            for q in range(3):
-                pa[1, q] = rel[c, q]
-                pa[2, q] = rel[a, q] + sac * (rel[c, q] - rel[a, q])
-            pp[0], pp[1], pp[2] = 0.0, pres[c], 0.0
-            _accumulate(pa, pp, out)
-    return None
+    """One component over a block: S = m cos 2πt, t = a x + b y + p at vertex v0 + u, stored at
+    spatial[s0 + u]; ζᵤ += S (u < n).
+
+    Offsets into flat buffers instead of slices (no array objects, with their reference counts,
+    per call), unsigned so that numba emits no negative-index wraparound (≈ 30 % slower).
+    """
+    vo = nb.uint64(v0)
+    so = nb.uint64(s0)
+    for u in range(nb.uint64(n)):
+        s = cos_turns(a * rx[vo + u] + (b * ry[vo + u] + p), m)
+        spatial[so + u] = s
+        zeta[u] += s
 
 
-@nb.njit(fastmath={"contract", "nsz"}, cache=True)
-def _phasors(
-    rx: float,
-    ry: float,
-    k: np.ndarray,
-    cx: np.ndarray,
-    sx: np.ndarray,
-    cbuf: np.ndarray,
-    sbuf: np.ndarray,
+@nb.njit(fastmath=_FM, cache=True)
+def _decayed_row(
+    k2: float, dpos: np.ndarray, spatial: np.ndarray, s0: int, acc: np.ndarray, n: int
 ) -> None:  # pragma: no cover - compiled
-    """cos/sin of kⱼ (x cos χⱼ + y sin χⱼ) for all components (vectorised, no reduction)."""
-    for j in range(k.shape[0]):
-        s, c = sincos(k[j] * (rx * cx[j] + ry * sx[j]))
-        cbuf[j] = c
-        sbuf[j] = s
+    """One component over a sub-block: accᵤ += 2^{−k2 dᵤ} spatial[s0 + u] (u < n)."""
+    so = nb.uint64(s0)
+    for u in range(nb.uint64(n)):
+        acc[u] += exp2_neg(k2 * dpos[u]) * spatial[so + u]
 
 
-@nb.njit(fastmath={"contract", "nsz", "reassoc"}, cache=True)
-def _dot2(a: np.ndarray, b: np.ndarray, c: np.ndarray, d: np.ndarray) -> float:  # pragma: no cover
-    """Σ aⱼbⱼ + cⱼdⱼ = Re Σ (a + i c)(b − i d): the elevation (reassociated: vectorised sum)."""
-    acc = 0.0
-    for j in range(a.shape[0]):
-        acc += a[j] * b[j] + c[j] * d[j]
-    return acc
-
-
-@nb.njit(fastmath={"contract", "nsz", "reassoc"}, cache=True)
-def _decayed_dot2(
-    k: np.ndarray, depth: float, a: np.ndarray, b: np.ndarray, c: np.ndarray, d: np.ndarray
-) -> float:  # pragma: no cover - compiled
-    """Σ e^{−kⱼ depth} (aⱼbⱼ + cⱼdⱼ): the Wheeler-stretched dynamic pressure head [m]."""
-    acc = 0.0
-    for j in range(k.shape[0]):
-        acc += exp_neg(k[j] * depth) * (a[j] * b[j] + c[j] * d[j])
-    return acc
-
-
-@nb.njit(inline="always", fastmath={"contract", "nsz"}, cache=True)
-def _accumulate(pa: np.ndarray, pp: np.ndarray, out: np.ndarray) -> None:  # pragma: no cover
-    """Add −∫p n dS and −∫p r × n dS of one triangle (p linear) to out[0:3], out[3:6]."""
-    e1x, e1y, e1z = pa[1, 0] - pa[0, 0], pa[1, 1] - pa[0, 1], pa[1, 2] - pa[0, 2]
-    e2x, e2y, e2z = pa[2, 0] - pa[0, 0], pa[2, 1] - pa[0, 1], pa[2, 2] - pa[0, 2]
+@nb.njit(fastmath=_FM, cache=True)
+def _triangle(
+    ax: float,
+    ay: float,
+    az: float,
+    bx: float,
+    by: float,
+    bz: float,
+    cx: float,
+    cy: float,
+    cz: float,
+    pa: float,
+    pb: float,
+    pc: float,
+) -> tuple[float, float, float, float, float, float]:  # pragma: no cover - compiled
+    """−∫p n dS and −∫p r × n dS of one triangle with p linear (vertices a, b, c)."""
+    e1x, e1y, e1z = bx - ax, by - ay, bz - az
+    e2x, e2y, e2z = cx - ax, cy - ay, cz - az
     nx = 0.5 * (e1y * e2z - e1z * e2y)
     ny = 0.5 * (e1z * e2x - e1x * e2z)
     nz = 0.5 * (e1x * e2y - e1y * e2x)
-    psum = pp[0] + pp[1] + pp[2]
-    pm = psum / 3.0
-    out[0] -= pm * nx
-    out[1] -= pm * ny
-    out[2] -= pm * nz
+    psum = pa + pb + pc
+    pm = psum * (1.0 / 3.0)
     # ∫ p r dS / S = (Σ pᵢ rᵢ + Σpᵢ Σrᵢ) / 12
-    qx = (
-        pp[0] * pa[0, 0]
-        + pp[1] * pa[1, 0]
-        + pp[2] * pa[2, 0]
-        + psum * (pa[0, 0] + pa[1, 0] + pa[2, 0])
-    ) / 12.0
-    qy = (
-        pp[0] * pa[0, 1]
-        + pp[1] * pa[1, 1]
-        + pp[2] * pa[2, 1]
-        + psum * (pa[0, 1] + pa[1, 1] + pa[2, 1])
-    ) / 12.0
-    qz = (
-        pp[0] * pa[0, 2]
-        + pp[1] * pa[1, 2]
-        + pp[2] * pa[2, 2]
-        + psum * (pa[0, 2] + pa[1, 2] + pa[2, 2])
-    ) / 12.0
-    out[3] -= qy * nz - qz * ny
-    out[4] -= qz * nx - qx * nz
-    out[5] -= qx * ny - qy * nx
+    qx = (pa * ax + pb * bx + pc * cx + psum * (ax + bx + cx)) * (1.0 / 12.0)
+    qy = (pa * ay + pb * by + pc * cy + psum * (ay + by + cy)) * (1.0 / 12.0)
+    qz = (pa * az + pb * bz + pc * cz + psum * (az + bz + cz)) * (1.0 / 12.0)
+    return (
+        -pm * nx,
+        -pm * ny,
+        -pm * nz,
+        -(qy * nz - qz * ny),
+        -(qz * nx - qx * nz),
+        -(qx * ny - qy * nx),
+    )
 
 
-@nb.njit(cache=True)
-def _fk_batch(
-    vb: np.ndarray,
+@nb.njit(fastmath={"contract", "nsz", "reassoc"}, cache=True)
+def _wet_sums(
+    weights: np.ndarray, pres: np.ndarray
+) -> tuple[float, float, float, float, float, float]:  # pragma: no cover - compiled
+    """−Σᵥ pᵥ w_qᵥ, q = 0…5 (plain sums: "reassoc" lets them vectorise)."""
+    a0 = a1 = a2 = a3 = a4 = a5 = 0.0
+    for v in range(pres.shape[0]):
+        p = pres[v]
+        a0 -= p * weights[0, v]
+        a1 -= p * weights[1, v]
+        a2 -= p * weights[2, v]
+        a3 -= p * weights[3, v]
+        a4 -= p * weights[4, v]
+        a5 -= p * weights[5, v]
+    return a0, a1, a2, a3, a4, a5
+
+
+@nb.njit(fastmath=_FM, cache=True)
+def _integrate(
     tri: np.ndarray,
+    tri_last: np.ndarray,
+    tri_first: np.ndarray,
+    body: np.ndarray,
+    weights: np.ndarray,
+    rot: np.ndarray,
+    depth: np.ndarray,
+    pres: np.ndarray,
+    out: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """Add the force and moment (earth axes) of the pressure below the surface to out[0:6].
+
+    Every triangle is first counted as wet (vertex weights, p = 0 at dry vertices); the triangles
+    crossing the surface are then corrected: their cut part replaces their whole-triangle term.
+    Works in the body frame (cuts are linear, so they commute with the rotation) and rotates once.
+    """
+    f0, f1, f2, m0, m1, m2 = _wet_sums(weights, pres)
+    x, y, z = body[0], body[1], body[2]
+    # a crossing triangle has a dry vertex (index ≥ first_dry) and a wet one (≤ last_wet): with the
+    # triangles sorted by their largest index, only a range of them needs looking at
+    first_dry = 0
+    while first_dry < depth.shape[0] and depth[first_dry] >= 0.0:
+        first_dry += 1
+    last_wet = depth.shape[0] - 1
+    while last_wet >= 0 and not depth[last_wet] >= 0.0:
+        last_wet -= 1
+    for t in range(np.searchsorted(tri_last, first_dry), tri.shape[0]):
+        if tri_first[t] > last_wet:
+            continue
+        i0, i1, i2 = tri[t, 0], tri[t, 1], tri[t, 2]
+        w0, w1, w2 = depth[i0] >= 0.0, depth[i1] >= 0.0, depth[i2] >= 0.0
+        n_wet = int(w0) + int(w1) + int(w2)
+        if n_wet == 0 or n_wet == 3:
+            continue
+        # remove the whole-triangle term counted in the vertex weights ...
+        c = _triangle(
+            x[i0], y[i0], z[i0], x[i1], y[i1], z[i1], x[i2], y[i2], z[i2],
+            pres[i0], pres[i1], pres[i2],
+        )  # fmt: skip
+        f0 -= c[0]
+        f1 -= c[1]
+        f2 -= c[2]
+        m0 -= c[3]
+        m1 -= c[4]
+        m2 -= c[5]
+        # ... and add the wet part; rotate so that the "odd" vertex (lone wet or lone dry) is a
+        if (n_wet == 1 and w0) or (n_wet == 2 and not w0):
+            a, b, e = i0, i1, i2
+        elif (n_wet == 1 and w1) or (n_wet == 2 and not w1):
+            a, b, e = i1, i2, i0
+        else:
+            a, b, e = i2, i0, i1
+        da = depth[a]
+        sab = da / (da - depth[b])
+        sac = da / (da - depth[e])
+        abx = x[a] + sab * (x[b] - x[a])
+        aby = y[a] + sab * (y[b] - y[a])
+        abz = z[a] + sab * (z[b] - z[a])
+        acx = x[a] + sac * (x[e] - x[a])
+        acy = y[a] + sac * (y[e] - y[a])
+        acz = z[a] + sac * (z[e] - z[a])
+        if n_wet == 1:
+            c = _triangle(x[a], y[a], z[a], abx, aby, abz, acx, acy, acz, pres[a], 0.0, 0.0)
+        else:
+            c = _triangle(abx, aby, abz, x[b], y[b], z[b], x[e], y[e], z[e], 0.0, pres[b], pres[e])
+            f0 += c[0]
+            f1 += c[1]
+            f2 += c[2]
+            m0 += c[3]
+            m1 += c[4]
+            m2 += c[5]
+            c = _triangle(abx, aby, abz, x[e], y[e], z[e], acx, acy, acz, 0.0, pres[e], 0.0)
+        f0 += c[0]
+        f1 += c[1]
+        f2 += c[2]
+        m0 += c[3]
+        m1 += c[4]
+        m2 += c[5]
+    f = (f0, f1, f2, m0, m1, m2)
+    for q in range(3):
+        out[q] += rot[q, 0] * f[0] + rot[q, 1] * f[1] + rot[q, 2] * f[2]
+        out[3 + q] += rot[q, 0] * f[3] + rot[q, 1] * f[4] + rot[q, 2] * f[5]
+
+
+@nb.njit(fastmath=_FM, cache=True, nogil=True)
+def _fk_one_ship(
+    body: np.ndarray,
+    tri: np.ndarray,
+    tri_last: np.ndarray,
+    tri_first: np.ndarray,
+    spread: np.ndarray,
+    weights: np.ndarray,
+    rot: np.ndarray,
+    x0: float,
+    y0: float,
+    z0: float,
+    k: np.ndarray,
+    cos_dir: np.ndarray,
+    sin_dir: np.ndarray,
+    amp: np.ndarray,
+    rho_g: float,
+    out: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """Force and moment about O (earth axes) of one ship at (x0, y0, z0); adds to out[0:6].
+
+    body (3, n_v), tri, tri_last, tri_first, spread and weights are the :class:`_KernelLayout`
+    arrays; amp the complex amplitudes cⱼ(t) of ζ = Re Σ cⱼ e^{−ikⱼ(X cos χⱼ + Y sin χⱼ)} (with
+    x0 = y0 = 0: already local, :meth:`WaveComponents.local_amplitudes`).
+    """
+    n_v = body.shape[1]
+    n_c = k.shape[0]
+    # Per component: wave vector in turns/m, k / ln 2, and Re cⱼ e^{−iθ} = |cⱼ| cos(θ − arg cⱼ)
+    # as modulus and phase offset in turns, with the ship's horizontal position folded in.
+    kxt = np.empty(n_c)
+    kyt = np.empty(n_c)
+    k2 = np.empty(n_c)
+    mod = np.empty(n_c)
+    offset = np.empty(n_c)
+    crest = 0.0  # Σ|cⱼ| ≥ ζ everywhere
+    for j in range(n_c):
+        kxt[j] = k[j] * cos_dir[j] * _INV_TWO_PI
+        kyt[j] = k[j] * sin_dir[j] * _INV_TWO_PI
+        k2[j] = k[j] * _INV_LN2
+        mod[j] = abs(amp[j])
+        t = kxt[j] * x0 + kyt[j] * y0 - np.arctan2(amp[j].imag, amp[j].real) * _INV_TWO_PI
+        offset[j] = t - np.rint(t)
+        crest += mod[j]
+    rx = np.empty(n_v)
+    ry = np.empty(n_v)
+    rz = np.empty(n_v)
+    r00, r01, r02 = rot[0, 0], rot[0, 1], rot[0, 2]  # (locals: no reloads, the loop vectorises)
+    r10, r11, r12 = rot[1, 0], rot[1, 1], rot[1, 2]
+    r20, r21, r22 = rot[2, 0], rot[2, 1], rot[2, 2]
+    bxs, bys, bzs = body[0], body[1], body[2]
+    for v in range(nb.uint64(n_v)):
+        bx, by, bz = bxs[v], bys[v], bzs[v]
+        rx[v] = r00 * bx + r01 * by + r02 * bz
+        ry[v] = r10 * bx + r11 * by + r12 * bz
+        rz[v] = r20 * bx + r21 * by + r22 * bz
+    depth = np.empty(n_v)
+    pres = np.empty(n_v)
+    # block buffers (the pressure rows are padded to a multiple of 4 lanes, i.e. no scalar
+    # remainder loop; the padding lanes must hold finite values, their results are discarded)
+    spatial = np.empty(n_c * _BLOCK)
+    zeta = np.zeros(_BLOCK)
+    dpos = np.empty(_SUB)
+    acc = np.empty(_SUB)
+    # Certainly dry vertices whose mesh neighbours are all certainly dry too (earth z < −Σ|cⱼ|)
+    # need no wave sums: their depth only has to be negative. Only a tail of the kernel order
+    # (the top of the hull) is skipped, so that the loops stay contiguous.
+    n_wave = n_v
+    while n_wave > 0:
+        v = n_wave - 1
+        rise = 0.0  # ≥ max over the neighbours u of (earth z_u − earth z_v)
+        for q in range(3):
+            rise += max(rot[2, q] * spread[q, v], rot[2, q] * spread[3 + q, v])
+        if not z0 + rz[v] + rise + crest < 0.0:  # (NaN: not skipped)
+            break
+        depth[v] = z0 + rz[v] + crest
+        pres[v] = 0.0
+        n_wave -= 1
+    for v0 in range(0, n_wave, _BLOCK):
+        v1 = min(v0 + _BLOCK, n_wave)
+        nb_ = v1 - v0
+        for u in range(nb_):
+            zeta[u] = z0 + rz[v0 + u]
+        for j in range(n_c):
+            s0 = j * _BLOCK
+            _spatial_row(kxt[j], kyt[j], offset[j], mod[j], rx, ry, v0, spatial, s0, zeta, nb_)
+        for u in range(nb_, min(nb_ + 3, _BLOCK)):  # padding lanes of a short last block
+            zeta[u] = 0.0
+            for j in range(n_c):
+                spatial[j * _BLOCK + u] = 0.0
+        vo = nb.uint64(v0)
+        for u in range(nb.uint64(nb_)):
+            depth[vo + u] = zeta[u]
+            pres[vo + u] = 0.0
+        for u0 in range(0, nb_, _SUB):
+            # the wet range [lo, hi) of the sub-block, widened to whole vectors
+            u1 = min(u0 + _SUB, nb_)
+            lo = u0
+            while lo < u1 and not zeta[lo] >= 0.0:
+                lo += 1
+            if lo == u1:
+                continue
+            hi = u1
+            while not zeta[hi - 1] >= 0.0:
+                hi -= 1
+            lo -= lo % 4
+            hi = min(hi + (-hi) % 4, _BLOCK)
+            n = hi - lo
+            dmin = np.inf  # (0 where a dry vertex lies in the range: no component is skipped)
+            for u in range(n):
+                dp = max(zeta[lo + u], 0.0)
+                dpos[u] = dp
+                acc[u] = 0.0
+                dmin = min(dmin, dp)
+            for j in range(n_c):
+                if k2[j] * dmin < _DECAY_CUTOFF:
+                    _decayed_row(k2[j], dpos, spatial, j * _BLOCK + lo, acc, n)
+            for u in range(lo, min(hi, nb_)):
+                if zeta[u] >= 0.0:
+                    pres[v0 + u] = rho_g * (z0 + rz[v0 + u] + acc[u - lo])
+    _integrate(tri, tri_last, tri_first, body, weights, rot, depth, pres, out)
+
+
+@nb.njit(cache=True, nogil=True)
+def _fk_batch(
+    body: np.ndarray,
+    tri: np.ndarray,
+    tri_last: np.ndarray,
+    tri_first: np.ndarray,
+    spread: np.ndarray,
+    weights: np.ndarray,
     rot: np.ndarray,
     z0: np.ndarray,
     k: np.ndarray,
     cx: np.ndarray,
     sx: np.ndarray,
-    cre: np.ndarray,
-    cim: np.ndarray,
+    amp: np.ndarray,
     rho_g: float,
     out: np.ndarray,
 ) -> None:  # pragma: no cover - compiled
     for s in range(rot.shape[0]):
-        _fk_one_ship(vb, tri, rot[s], z0[s], k[s], cx[s], sx[s], cre[s], cim[s], rho_g, out[s])
+        _fk_one_ship(
+            body,
+            tri,
+            tri_last,
+            tri_first,
+            spread,
+            weights,
+            rot[s],
+            0.0,
+            0.0,
+            z0[s],
+            k[s],
+            cx[s],
+            sx[s],
+            amp[s],
+            rho_g,
+            out[s],
+        )
+
+
+@nb.njit(cache=True, nogil=True, parallel=True)
+def _fk_batch_parallel(
+    body: np.ndarray,
+    tri: np.ndarray,
+    tri_last: np.ndarray,
+    tri_first: np.ndarray,
+    spread: np.ndarray,
+    weights: np.ndarray,
+    rot: np.ndarray,
+    z0: np.ndarray,
+    k: np.ndarray,
+    cx: np.ndarray,
+    sx: np.ndarray,
+    amp: np.ndarray,
+    rho_g: float,
+    out: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    for s in nb.prange(rot.shape[0]):
+        _fk_one_ship(
+            body,
+            tri,
+            tri_last,
+            tri_first,
+            spread,
+            weights,
+            rot[s],
+            0.0,
+            0.0,
+            z0[s],
+            k[s],
+            cx[s],
+            sx[s],
+            amp[s],
+            rho_g,
+            out[s],
+        )
 
 
 # ----------------------------------------------------------------------------- public API
@@ -325,24 +644,32 @@ def froude_krylov_hydrostatic(
     """
     position = np.asarray(position, dtype=np.float64)
     rotation = np.ascontiguousarray(rotation, dtype=np.float64)
-    amp = waves.local_amplitudes(phasor, position[0], position[1])
     if method == "fast":
+        # the kernel folds the horizontal position into the amplitudes itself (saves ~6 µs of
+        # numpy calls per evaluation)
         out = np.zeros(6)
+        lay = panels._layout
         _fk_one_ship(
-            panels.vertices,
-            panels.triangles,
+            lay.body,
+            lay.triangles,
+            lay.tri_last,
+            lay.tri_first,
+            lay.spread,
+            lay.weights,
             rotation,
+            float(position[0]),
+            float(position[1]),
             float(position[2]),
             waves.wavenumber,
             waves.cos_direction,
             waves.sin_direction,
-            np.ascontiguousarray(amp.real),
-            np.ascontiguousarray(amp.imag),
+            np.ascontiguousarray(phasor, dtype=np.complex128),
             rho * g,
             out,
         )
         return out
     if method == "reference":
+        amp = waves.local_amplitudes(phasor, position[0], position[1])
         return _reference(panels, waves, amp, position, rotation, rho, g)
     raise ValueError(f"method must be 'fast' or 'reference', got {method!r}")
 
@@ -358,6 +685,7 @@ def froude_krylov_hydrostatic_batch(
     *,
     rho: float,
     g: float,
+    parallel: bool = False,
 ) -> np.ndarray:
     """Batched fast kernel: many ships (same hull) in one call.
 
@@ -374,6 +702,10 @@ def froude_krylov_hydrostatic_batch(
         (n_ships,) earth z of each ship's O [m].
     rotation : numpy.ndarray
         (n_ships, 3, 3) body-to-earth rotations.
+    parallel : bool
+        Spread the ships over numba's threads (prange; ``NUMBA_NUM_THREADS``, by default one per
+        core). Off by default: in a process that also runs torch, the two thread pools compete
+        for the cores (see the notes of the fast-kernel section). Results are identical.
 
     Returns
     -------
@@ -382,17 +714,21 @@ def froude_krylov_hydrostatic_batch(
     """
     n = rotation.shape[0]
     out = np.zeros((n, 6))
-    amp = np.asarray(local_amplitude, dtype=np.complex128)
-    _fk_batch(
-        panels.vertices,
-        panels.triangles,
+    lay = panels._layout
+    kernel = _fk_batch_parallel if parallel else _fk_batch
+    kernel(
+        lay.body,
+        lay.triangles,
+        lay.tri_last,
+        lay.tri_first,
+        lay.spread,
+        lay.weights,
         np.ascontiguousarray(rotation, dtype=np.float64),
         np.ascontiguousarray(depth_of_origin, dtype=np.float64),
         np.ascontiguousarray(wavenumber, dtype=np.float64),
         np.ascontiguousarray(cos_direction, dtype=np.float64),
         np.ascontiguousarray(sin_direction, dtype=np.float64),
-        np.ascontiguousarray(amp.real),
-        np.ascontiguousarray(amp.imag),
+        np.ascontiguousarray(local_amplitude, dtype=np.complex128),
         rho * g,
         out,
     )

@@ -123,3 +123,100 @@ def test_bad_method_is_rejected(s175):
         froude_krylov_hydrostatic(
             panels, waves, phasor, np.zeros(3), np.eye(3), rho=hull.rho, g=hull.g, method="x"
         )
+
+
+# ----------------------------------------------------------------------------- fast-path edge cases
+# The fast kernel skips work exactly: the wave sums of hull-top vertices that are certainly dry
+# (with all their mesh neighbours) below the highest possible crest Σ|cⱼ|, the pressure sums of
+# dry vertices, the decay terms below 2^−54, and all triangles that cannot cross the surface.
+# These cases put each of those on an edge; fast and reference must still agree.
+
+
+def _agree(panels, hull, waves, phasor, pos, rot, rtol=1e-9):
+    fast = froude_krylov_hydrostatic(panels, waves, phasor, pos, rot, rho=hull.rho, g=hull.g)
+    ref = froude_krylov_hydrostatic(
+        panels, waves, phasor, pos, rot, rho=hull.rho, g=hull.g, method="reference"
+    )
+    scale = np.abs(ref[:3]).max(), np.abs(ref[3:]).max()
+    np.testing.assert_allclose(fast[:3], ref[:3], rtol=0, atol=rtol * scale[0])
+    np.testing.assert_allclose(fast[3:], ref[3:], rtol=0, atol=rtol * scale[1])
+    return fast
+
+
+@pytest.mark.parametrize(
+    ("case", "heel_deg", "heave", "amplitude", "n"),
+    [
+        ("heeled 60 deg", 60.0, 0.0, 0.5, 50),
+        ("deck immersed", 20.0, 8.0, 1.0, 50),
+        ("huge waves", 10.0, 0.0, 8.0, 50),
+        ("calm water with components", 35.0, 0.0, 0.0, 20),
+        ("tiny sea, dry top skipped", 0.0, 0.0, 0.02, 30),
+        ("fully submerged", 0.0, 30.0, 0.5, 30),
+        ("out of the water", 0.0, -20.0, 0.5, 30),
+    ],
+)
+def test_fast_matches_reference_in_adversarial_cases(s175, case, heel_deg, heave, amplitude, n):
+    hull, panels = s175
+    waves, phasor = _sea(n, 7, amplitude=max(amplitude, 1e-300))
+    if amplitude == 0.0:
+        phasor = np.zeros(n, complex)
+    rot = rotation_matrix(np.radians(heel_deg), 0.02, 0.7)
+    pos = np.array([-35.0, 12.0, heave])
+    fast = _agree(panels, hull, waves, phasor, pos, rot)
+    if case == "out of the water":
+        np.testing.assert_array_equal(fast, 0.0)
+
+
+def test_short_waves_decay_cutoff(s175):
+    # k up to 3 rad/m on a deeply immersed hull (keel 15.5 m down): e^{−k d} < 2^−54 for the
+    # shortest components over the bottom sub-blocks, which the kernel then leaves out
+    hull, panels = s175
+    rng = np.random.default_rng(11)
+    waves = WaveComponents.from_arrays(rng.uniform(0.5, 3.0, 40), rng.uniform(-np.pi, np.pi, 40))
+    phasor = 0.05 * np.exp(1j * rng.uniform(0, 2 * np.pi, 40))
+    for heave in (0.3, 6.0):
+        pos = np.array([3.0, 1.0, heave])
+        _agree(panels, hull, waves, phasor, pos, rotation_matrix(0.1, 0.0, 0.2), rtol=1e-12)
+
+
+def test_no_components_is_calm_water(s175):
+    hull, panels = s175
+    empty = WaveComponents.from_arrays(np.zeros(0), np.zeros(0))
+    waves, _ = _sea(3, 0)
+    pos, rot = np.array([5.0, 5.0, 0.4]), rotation_matrix(0.2, 0.01, 0.0)
+    f0 = froude_krylov_hydrostatic(panels, empty, np.zeros(0), pos, rot, rho=hull.rho, g=hull.g)
+    f1 = froude_krylov_hydrostatic(panels, waves, np.zeros(3), pos, rot, rho=hull.rho, g=hull.g)
+    np.testing.assert_allclose(f0, f1, rtol=1e-13, atol=1e-6)
+
+
+def test_panels_from_arrays_match_from_mesh(s175):
+    hull, panels = s175
+    again = HullPanels(panels.vertices.tolist(), panels.triangles.tolist())
+    waves, phasor = _sea(10, 3)
+    args = (waves, phasor, np.array([1.0, 2.0, 0.1]), rotation_matrix(0.1, 0.02, 0.3))
+    np.testing.assert_array_equal(
+        froude_krylov_hydrostatic(again, *args, rho=hull.rho, g=hull.g),
+        froude_krylov_hydrostatic(panels, *args, rho=hull.rho, g=hull.g),
+    )
+    with pytest.raises(ValueError, match="expected"):
+        HullPanels(np.zeros((4, 2)), np.zeros((2, 3), int))
+
+
+def test_parallel_batch_equals_serial(s175):
+    hull, panels = s175
+    n_ships = 5
+    rng = np.random.default_rng(5)
+    seas = [_sea(25, s) for s in range(n_ships)]
+    args = (
+        np.array([w.wavenumber for w, _ in seas]),
+        np.array([w.cos_direction for w, _ in seas]),
+        np.array([w.sin_direction for w, _ in seas]),
+        np.array([w.local_amplitudes(c, *rng.uniform(-100, 100, 2)) for w, c in seas]),
+        rng.uniform(-0.5, 0.5, n_ships),
+        np.array([rotation_matrix(*rng.uniform(-0.3, 0.3, 3)) for _ in range(n_ships)]),
+    )
+    serial = froude_krylov_hydrostatic_batch(panels, *args, rho=hull.rho, g=hull.g)
+    parallel = froude_krylov_hydrostatic_batch(panels, *args, rho=hull.rho, g=hull.g, parallel=True)
+    np.testing.assert_array_equal(parallel, serial)
+    empty = froude_krylov_hydrostatic_batch(panels, *(a[:0] for a in args), rho=hull.rho, g=hull.g)
+    assert empty.shape == (0, 6)

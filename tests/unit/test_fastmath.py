@@ -1,0 +1,205 @@
+"""Branch-free polynomial sin/cos/exp of ship_gym.forces.fastmath against numpy (and mpmath)."""
+
+import math
+import re
+
+import numba as nb
+import numpy as np
+import pytest
+
+from ship_gym.forces.fastmath import cos_turns, exp2_neg, exp_neg, sincos, sincos_turns
+
+# The kernels call these from loops compiled with "reassoc": the functions must keep their own
+# (exact) evaluation order there. Test them from such loops, as used.
+_CALLER_FLAGS = {"contract", "nsz", "reassoc"}
+
+
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _sincos_loop(x):
+    s = np.empty_like(x)
+    c = np.empty_like(x)
+    for i in range(x.shape[0]):
+        s[i], c[i] = sincos(x[i])
+    return s, c
+
+
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _sincos_turns_loop(t):
+    s = np.empty_like(t)
+    c = np.empty_like(t)
+    for i in range(t.shape[0]):
+        s[i], c[i] = sincos_turns(t[i])
+    return s, c
+
+
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _cos_turns_loop(t, m):
+    out = np.empty_like(t)
+    for i in range(t.shape[0]):
+        out[i] = cos_turns(t[i], m)
+    return out
+
+
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _exp_loop(y):
+    out = np.empty_like(y)
+    for i in range(y.shape[0]):
+        out[i] = exp_neg(y[i])
+    return out
+
+
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _exp2_loop(y):
+    out = np.empty_like(y)
+    for i in range(y.shape[0]):
+        out[i] = exp2_neg(y[i])
+    return out
+
+
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _sincos_sum(x):
+    # a reassociated reduction around the inlined sincos: the loop vectorises, and the Cody–Waite
+    # reduction inside must survive it
+    acc = 0.0
+    for i in range(x.shape[0]):
+        s, c = sincos(x[i])
+        acc += s * s + c * c
+    return acc
+
+
+# π in extended precision where the platform has it (x86: 80-bit long double), for references
+# of sin 2πt at large t (the double π alone is off by 1.2e-16 relative: 8e-14 rad at t = 100)
+_PI_LD = np.longdouble("3.14159265358979323846264338327950288")
+_EXTENDED = np.finfo(np.longdouble).eps < 1e-17
+
+
+def _ulp_tol(n_ulp: float) -> float:
+    return n_ulp * np.finfo(float).eps
+
+
+# documented bounds of the kernel tier (cos_turns: absolute, per unit amplitude; exp2_neg: relative)
+_COS_TURNS_TOL = 1e-12
+_EXP2_NEG_RTOL = 1.2e-12
+
+
+@pytest.mark.parametrize("limit", [1.0, 30.0, 1e3, 1e4, 1e6])
+def test_sincos_matches_numpy(limit):
+    # Absolute error of a few ulp of 1 at every magnitude (the range reduction is exact up to
+    # |x| ~ 6.5e6): the wave kernels use |x| ≲ 100, sea-state generators larger phases.
+    rng = np.random.default_rng(0)
+    x = rng.uniform(-limit, limit, 200_000)
+    s, c = _sincos_loop(x)
+    np.testing.assert_allclose(s, np.sin(x), rtol=0, atol=_ulp_tol(10))
+    np.testing.assert_allclose(c, np.cos(x), rtol=0, atol=_ulp_tol(10))
+
+
+def test_sincos_special_values_and_identity():
+    x = np.array([0.0, -0.0, np.pi / 6, np.pi / 4, np.pi / 2, np.pi, 2 * np.pi, -np.pi / 3, 1e-300])
+    s, c = _sincos_loop(x)
+    np.testing.assert_allclose(s, np.sin(x), rtol=0, atol=_ulp_tol(4))
+    np.testing.assert_allclose(c, np.cos(x), rtol=0, atol=_ulp_tol(4))
+    assert s[0] == 0.0 and c[0] == 1.0
+    x = np.random.default_rng(1).uniform(-100, 100, 10_000)
+    assert _sincos_sum(x) == pytest.approx(x.size, rel=1e-14)
+
+
+def test_sincos_is_continuous_across_reduction_boundaries():
+    # The reduction switches n = rint(x / 2π) at odd multiples of π (and the turn versions at
+    # half-integers): no jump beyond round-off either side of the switch.
+    k = np.arange(-50, 51)
+    centres = (2 * k + 1) * np.pi
+    offsets = np.array([-1e-9, -1e-12, -1e-15, 0.0, 1e-15, 1e-12, 1e-9])
+    x = (centres[:, None] + offsets[None, :] * np.maximum(1.0, np.abs(centres[:, None]))).ravel()
+    s, c = _sincos_loop(x)
+    np.testing.assert_allclose(s, np.sin(x), rtol=0, atol=_ulp_tol(10))
+    np.testing.assert_allclose(c, np.cos(x), rtol=0, atol=_ulp_tol(10))
+    # consecutive floats around x = π: monotone sin, cos ≈ −1
+    xs = np.nextafter(np.pi, 0.0) + np.arange(-20, 21) * np.spacing(np.pi)
+    s, c = _sincos_loop(xs)
+    assert np.all(np.diff(s) <= 0.0)
+    np.testing.assert_allclose(c, -1.0, rtol=0, atol=_ulp_tol(4))
+    # turns: around every half-integer
+    t = (np.arange(-20, 21) + 0.5)[:, None] + np.array([-1e-12, -1e-15, 0.0, 1e-15, 1e-12])[None, :]
+    t = t.ravel()
+    if not _EXTENDED:
+        t = t[np.abs(t) < 2]
+    s, c = _sincos_turns_loop(t)
+    ref = 2 * _PI_LD * t.astype(np.longdouble)
+    np.testing.assert_allclose(s, np.sin(ref).astype(float), rtol=0, atol=_ulp_tol(10))
+    np.testing.assert_allclose(c, np.cos(ref).astype(float), rtol=0, atol=_ulp_tol(10))
+    np.testing.assert_allclose(_cos_turns_loop(t, 1.0), c, rtol=0, atol=_COS_TURNS_TOL)
+
+
+@pytest.mark.parametrize("limit", [0.5, 5.0, 100.0])
+def test_sincos_turns_and_cos_turns(limit):
+    if limit > 2 and not _EXTENDED:
+        pytest.skip("needs an extended-precision reference for 2πt")
+    rng = np.random.default_rng(2)
+    t = rng.uniform(-limit, limit, 100_000)
+    ref = 2 * _PI_LD * t.astype(np.longdouble)  # the exact phase of the double t
+    s, c = _sincos_turns_loop(t)
+    np.testing.assert_allclose(s, np.sin(ref).astype(float), rtol=0, atol=_ulp_tol(10))
+    np.testing.assert_allclose(c, np.cos(ref).astype(float), rtol=0, atol=_ulp_tol(10))
+    for m in (1.0, -2.5, 0.0):
+        np.testing.assert_allclose(
+            _cos_turns_loop(t, m),
+            m * np.cos(ref).astype(float),
+            rtol=0,
+            atol=_COS_TURNS_TOL * abs(m),
+        )
+    # a harmonic as modulus and phase offset (how the wave kernel uses it)
+    a, b = 0.7, -1.3
+    phase = np.arctan2(b, a) / (2 * np.pi)
+    h = _cos_turns_loop(t - phase, np.hypot(a, b))
+    href = (a * np.cos(ref) + b * np.sin(ref)).astype(float)
+    atol = (_COS_TURNS_TOL + _ulp_tol(4) * max(1, limit)) * np.hypot(a, b)
+    np.testing.assert_allclose(h, href, rtol=0, atol=atol)
+
+
+def test_exp_neg_matches_numpy():
+    # the wave kernels use y = k d in [0, 45] (beyond, e^−y < 3e-20 is negligible)
+    rng = np.random.default_rng(3)
+    y = np.concatenate([rng.uniform(0.0, 45.0, 200_000), rng.uniform(0.0, 1e-3, 1000)])
+    e = _exp_loop(y)
+    np.testing.assert_allclose(e, np.exp(-y), rtol=_ulp_tol(4), atol=0)
+    y = np.linspace(0.0, 700.0, 20_001)
+    np.testing.assert_allclose(_exp_loop(y), np.exp(-y), rtol=_ulp_tol(8), atol=0)
+    # negative arguments (growth) are exact too, within the documented range
+    y = np.linspace(-700.0, 0.0, 2001)
+    np.testing.assert_allclose(_exp_loop(y), np.exp(-y), rtol=_ulp_tol(8), atol=0)
+
+
+def test_exp_neg_extremes():
+    e = _exp_loop(np.array([0.0, 700.0, 745.0, 1e300, np.inf, np.nan]))
+    assert e[0] == 1.0
+    # clamped at y = 700: tiny, positive, finite (never an inf/garbage exponent)
+    assert e[1] == pytest.approx(math.exp(-700.0), rel=1e-14)
+    assert np.all(e[2:5] == e[1])
+    assert np.isnan(e[5])
+
+
+def test_exp2_neg_matches_numpy():
+    rng = np.random.default_rng(4)
+    y = rng.uniform(0.0, 65.0, 200_000)  # (k/ln2) d for k d ≤ 45
+    np.testing.assert_allclose(_exp2_loop(y), np.exp2(-y), rtol=_EXP2_NEG_RTOL, atol=0)
+    y = np.arange(-1000.0, 1021.0)  # integers: exact powers of two
+    np.testing.assert_array_equal(_exp2_loop(y), np.exp2(-y))
+    y = np.linspace(-1000.0, 1020.0, 100_001)
+    np.testing.assert_allclose(_exp2_loop(y), np.exp2(-y), rtol=_EXP2_NEG_RTOL, atol=0)
+    e = _exp2_loop(np.array([1020.0, 2000.0, np.inf]))
+    assert np.all(e == np.exp2(-1020.0))
+
+
+def test_loops_vectorise():
+    # The point of these functions: loops calling them compile to AVX/SSE vector code with no
+    # libm calls (checked on the assembly; skipped where the target has no 256-bit vectors).
+    sig = _sincos_sum.signatures[0] if _sincos_sum.signatures else None
+    if sig is None:
+        _sincos_sum(np.zeros(4))
+        sig = _sincos_sum.signatures[0]
+    asm = _sincos_sum.inspect_asm(sig)
+    if "ymm" not in asm and "zmm" not in asm:
+        pytest.skip("no 256-bit vector code on this target")
+    calls = [line for line in asm.splitlines() if "call" in line]
+    assert not [line for line in calls if re.search(r"\b(sin|cos|exp|sincos)\b", line)]
+    assert "vroundpd" in asm or "vrndscalepd" in asm
