@@ -147,10 +147,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _add_hydro_commands(sub: argparse._SubParsersAction) -> None:
-    from ship_gym import cli_hydro, cli_simulate
+    from ship_gym import cli_hydro, cli_manoeuvre, cli_simulate
 
     cli_hydro.add_commands(sub)
     cli_simulate.add_commands(sub)
+    cli_manoeuvre.add_commands(sub)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
+from scipy.optimize import brentq
 
 from ship_gym.control.actuators import FIN_SERVO, FOIL_SERVO, RUDDER_SERVO, Actuated
 from ship_gym.control.autopilot import HeadingAutopilot
@@ -41,7 +42,7 @@ from ship_gym.forces.diffraction import Diffraction
 from ship_gym.forces.fins import RollFins, TFoil
 from ship_gym.forces.froude_krylov import FroudeKrylovHydrostatics
 from ship_gym.forces.manoeuvring import HullManoeuvring
-from ship_gym.forces.propeller import design_propeller_for
+from ship_gym.forces.propeller import Propeller, design_propeller_for
 from ship_gym.forces.radiation import ConstantCoefficientRadiation, RadiationMemory
 from ship_gym.forces.resistance import CalmWaterResistance
 from ship_gym.forces.rudder import Rudder
@@ -321,4 +322,46 @@ def build_simulator(
     sim.commands = dict(commands)
     eq = equilibrium(hull)
     sim.reset(eta=np.array([0.0, 0.0, eq.heave, 0.0, eq.trim, 0.0]))
+    if setup.propulsion and setup.speed > 0.0:
+        # the self-propulsion point of the propeller alone ignores the appendages' drag (the
+        # rudder's ≈ 2 % of R_T): balance the surge force of the assembled ship instead
+        trim_shaft_speed(sim, setup.speed)
     return sim
+
+
+def propeller_of(sim: Simulator) -> Propeller:
+    """The propeller model of a simulator (built with ``propulsion=True``)."""
+    for f in sim.forces:
+        if isinstance(f, Propeller):
+            return f
+    raise ValueError("the simulator has no propeller (build it with propulsion=True)")
+
+
+def trim_shaft_speed(sim: Simulator, speed: float, iterations: int = 4) -> float:
+    """Set (and return) the shaft speed [rev/s] that makes ``speed`` a steady straight run.
+
+    The simulator's state is left as it was (build it at ``speed``: ν = (U, 0, …)). The surge
+    force of every model but the propeller (resistance, rudder drag at the current
+    rudder command, hydrostatics + gravity …) is evaluated at ν = (U, 0, 0, 0, 0, 0) and the
+    propeller's (1 − t) T(n, (1 − w) U) is matched to it (Brent on n). The rudder's drag depends
+    on the propeller's slipstream, hence a few fixed-point iterations.
+    """
+    prop = propeller_of(sim)
+    saved = sim.nu
+    sim.nu = np.array([float(speed), 0.0, 0.0, 0.0, 0.0, 0.0])
+    n = float(sim.commands.get("shaft_speed", prop.shaft_speed_for(speed)))
+    for _ in range(iterations):
+        sim.commands = {**sim.commands, "shaft_speed": n}
+        breakdown = sim.force_breakdown()
+        others = sum(v[0] for k, v in breakdown.items() if k != prop.name)
+
+        def net(nn: float, others: float = others) -> float:
+            return prop.operating_point(speed, nn).surge_force + others
+
+        hi = 2.0 * n + 0.1
+        while net(hi) < 0.0:
+            hi *= 2.0
+        n = float(brentq(net, 0.0, hi, xtol=1e-12))
+    sim.commands = {**sim.commands, "shaft_speed": n}
+    sim.nu = saved
+    return n

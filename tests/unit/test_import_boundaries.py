@@ -31,6 +31,7 @@ STAGES = {
     "cli": 9,
     "cli_hydro": 9,
     "cli_simulate": 9,
+    "cli_manoeuvre": 9,
 }
 
 
