@@ -236,17 +236,108 @@ def _continuous_poles(
     return rp, cp
 
 
+_DAMPING_OMEGA = np.linspace(0.0, 3.0, 601)[1:]
+"""Default grid of the B(ω) ≥ 0 constraint [rad/s]."""
+
+
+def _transfer_rows(
+    s: NDArray[np.complex128],
+    real_poles: NDArray[np.float64],
+    complex_poles: NDArray[np.complex128],
+) -> NDArray[np.complex128]:
+    """K̂(s) = rows @ [c_r, a_c, b_c]: Laplace transforms of the columns of :func:`_modal_basis`.
+
+    e^{pt} → 1/(s − p); e^{σt}cos ωt → (s − σ)/((s − σ)² + ω²); e^{σt}sin ωt → ω/((s − σ)² + ω²).
+    """
+    ss = np.asarray(s, dtype=complex).reshape(-1, 1)
+    sig, om = complex_poles.real[None, :], complex_poles.imag[None, :]
+    den = (ss - sig) ** 2 + om**2
+    return np.hstack([1.0 / (ss - real_poles[None, :]), (ss - sig) / den, om / den])
+
+
+def _damping_rows(
+    omega: NDArray[np.float64],
+    real_poles: NDArray[np.float64],
+    complex_poles: NDArray[np.complex128],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Rows of B(ω) = ∫₀^∞ K cos ωt dt = Re K̂(iω) and of dB/dω = Re[i K̂'(iω)] (linear in coef)."""
+    s = 1j * np.asarray(omega, dtype=float)
+    rows = _transfer_rows(s, real_poles, complex_poles)
+    ss = s.reshape(-1, 1)
+    sig, om = complex_poles.real[None, :], complex_poles.imag[None, :]
+    den = (ss - sig) ** 2 + om**2
+    d_real = -1.0 / (ss - real_poles[None, :]) ** 2
+    d_cos = 1.0 / den - 2.0 * (ss - sig) ** 2 / den**2
+    d_sin = -2.0 * om * (ss - sig) / den**2
+    d_rows = np.hstack([d_real, d_cos, d_sin])
+    return rows.real, (1j * d_rows).real
+
+
 def _lstsq_residues(
     t: NDArray[np.float64],
     k: NDArray[np.float64],
     rp: NDArray[np.float64],
     cp: NDArray[np.complex128],
+    *,
+    zero_dc: bool = False,
+    damping_omega: NDArray[np.float64] | None = None,
 ) -> tuple[NDArray[np.float64], float]:
+    """Residues by least squares on K(t), optionally constrained (module docstring, step 3).
+
+    ``zero_dc``: equality K̂(0) = ∫₀^∞ K dt = B(0) = 0, i.e. Σ c_r/s_r + Σ (a σ − b ω)/|s|² = 0.
+    ``damping_omega``: B(ω) ≥ 0 on that grid, by an active set: while some B(ω_k) < 0, the most
+    violated ω_k gets the equalities B(ω_k) = 0 and dB/dω(ω_k) = 0 (the tangency that an active
+    interior inequality has at the optimum). Equalities are imposed in the null space of the
+    constraint rows (exact to round-off).
+    """
     phi = _modal_basis(t, rp, cp)
     norms = np.linalg.norm(phi, axis=0)
     norms[norms == 0] = 1.0
-    coef, *_ = np.linalg.lstsq(phi / norms, k, rcond=1e-12)
-    coef = coef / norms
+    phin = phi / norms
+    n = phin.shape[1]
+    eq: list[NDArray[np.float64]] = []
+    if zero_dc:
+        eq.append(_transfer_rows(np.zeros(1), rp, cp).real[0] / norms)
+    b_rows = None
+    if damping_omega is not None and damping_omega.size:
+        b_rows, db_rows = _damping_rows(damping_omega, rp, cp)
+        b_rows = b_rows / norms
+        db_rows = db_rows / norms
+
+    def solve(rows: list[NDArray[np.float64]]) -> NDArray[np.float64] | None:
+        if not rows:
+            z, *_ = np.linalg.lstsq(phin, k, rcond=1e-12)
+            return z
+        g = np.array(rows)
+        g = g / np.linalg.norm(g, axis=1, keepdims=True)
+        _, sv, vt = np.linalg.svd(g)
+        rank = int(np.count_nonzero(sv > 1e-10 * sv[0]))
+        if rank >= n:
+            return None
+        null = vt[rank:].T
+        y, *_ = np.linalg.lstsq(phin @ null, k, rcond=1e-12)
+        return null @ y
+
+    z = solve(eq)
+    if z is None:
+        raise ValueError("the zero-DC constraint leaves no free residue")
+    if b_rows is not None:
+        for _ in range(3 * n):
+            b = b_rows @ z
+            scale = float(np.max(np.abs(b)))
+            i_min = int(np.argmin(b))
+            if scale == 0.0 or b[i_min] >= -1e-9 * scale:
+                break
+            new = [b_rows[i_min], db_rows[i_min]]
+            trial = solve([*eq, *new])
+            if trial is None:
+                new = new[:1]
+                trial = solve([*eq, *new])
+            if trial is None:
+                break
+            eq.extend(new)
+            z = trial
+    coef = z / norms
     err = float(np.linalg.norm(phi @ coef - k) / np.linalg.norm(k))
     return coef, err
 
@@ -263,6 +354,9 @@ def fit_kernel(
     dt_fit: float | None = None,
     output: int = 0,
     input: int = 0,
+    zero_dc: bool = False,
+    nonnegative_damping: bool = False,
+    damping_omega: ArrayLike | None = None,
 ) -> ModalFit:
     """Fit one kernel K(t) by ERA poles + least-squares residues (module docstring).
 
@@ -287,6 +381,14 @@ def fit_kernel(
         multiple of the grid step.
     output, input : int
         Pair indices recorded in the result.
+    zero_dc : bool
+        Constrain the zero-frequency damping B_fit(0) = ∫₀^∞ K_fit dt = −Σ rᵢ/λᵢ to zero (exact
+        to round-off), as a radiation kernel must (Perez & Fossen 2008).
+    nonnegative_damping : bool
+        Constrain B_fit(ω) = ∫₀^∞ K_fit cos ωt dt ≥ 0 on ``damping_omega`` (a diagonal pair:
+        a passive radiation force) by the active set of :func:`_lstsq_residues`.
+    damping_omega : array_like, optional
+        Frequency grid of that constraint [rad/s]; default 600 points on (0, 3] rad/s.
 
     Returns
     -------
@@ -304,6 +406,15 @@ def fit_kernel(
         raise ValueError(f"max_order={max_order!r}; expected a positive integer")
     if not (isinstance(hankel_size, int) and hankel_size >= 4):
         raise ValueError(f"hankel_size={hankel_size!r}; expected an integer ≥ 4")
+    w_con = None
+    if nonnegative_damping:
+        w_con = (
+            _DAMPING_OMEGA
+            if damping_omega is None
+            else np.asarray(damping_omega, dtype=float).reshape(-1)
+        )
+        if not np.all(np.isfinite(w_con)) or np.any(w_con < 0):
+            raise ValueError(f"damping_omega must hold finite ω ≥ 0 [rad/s]; got {w_con}")
     dt = tt[1] - tt[0]
     window = tt[-1]
     dt_target = window / (2 * hankel_size) if dt_fit is None else float(dt_fit)
@@ -337,7 +448,7 @@ def fit_kernel(
         rp, cp = _continuous_poles(np.linalg.eigvals(ad), dt_s, sigma_min)
         if rp.size + cp.size == 0:
             continue
-        coef, err = _lstsq_residues(tt, kk, rp, cp)
+        coef, err = _lstsq_residues(tt, kk, rp, cp, zero_dc=zero_dc, damping_omega=w_con)
         if best is None or err < best[0]:
             best = (err, (rp, cp, coef))
         if err <= target_error:
@@ -685,6 +796,9 @@ def fit_state_space(
     zero_tol: float = 1e-5,
     hankel_size: int = 60,
     dt_fit: float | None = None,
+    zero_dc: bool = False,
+    nonnegative_damping: bool = False,
+    damping_omega: ArrayLike | None = None,
 ) -> StateSpaceRadiation:
     """Fit a stable state-space realisation to a matrix of kernels K(t).
 
@@ -711,6 +825,12 @@ def fit_state_space(
         gets order 0 [-].
     hankel_size, dt_fit
         ERA sampling (see :func:`fit_kernel`).
+    zero_dc : bool
+        B_fit(0) = ∫₀^∞ K_fit dt = 0 for every fitted pair (see :func:`fit_kernel`).
+    nonnegative_damping : bool
+        B_ii,fit(ω) ≥ 0 on ``damping_omega`` for the diagonal pairs i = j (square K only).
+    damping_omega : array_like, optional
+        Grid of that constraint [rad/s] (default (0, 3] rad/s, 600 points).
 
     Returns
     -------
@@ -758,6 +878,9 @@ def fit_state_space(
                 dt_fit=dt_fit,
                 output=i,
                 input=j,
+                zero_dc=zero_dc,
+                nonnegative_damping=nonnegative_damping and p == m and i == j,
+                damping_omega=damping_omega,
             )
             fits.append(fit)
             orders[i, j] = fit.order
