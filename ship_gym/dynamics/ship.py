@@ -37,6 +37,7 @@ from ship_gym.control.autopilot import HeadingAutopilot
 from ship_gym.control.stabilisers import FinController, RideController, control_derivative
 from ship_gym.dynamics.linearization import nomoto_from_models
 from ship_gym.dynamics.simulator import IntegratorName, Simulator
+from ship_gym.forces.added_resistance import AddedResistance
 from ship_gym.forces.base import ForceModel
 from ship_gym.forces.diffraction import Diffraction
 from ship_gym.forces.fins import RollFins, TFoil
@@ -105,6 +106,11 @@ class ShipSetup:
         Roll fins: none, open-loop ``"fins_command"``, or the classical PD stabiliser.
     t_foil : {"none", "command", "controller"}
         T-foil: none, open-loop ``"t_foil_command"``, or the classical ride controller.
+    added_resistance : {"none", "reflection", "total"}
+        Mean added resistance in waves (SNNM, Liu & Papanikolaou 2020). The nonlinear
+        Froude–Krylov force on the moving hull already produces the motion-induced part, so
+        ``"reflection"`` (short-wave reflection only) is the consistent choice with it;
+        ``"total"`` double-counts the motion part and is there for comparisons.
     """
 
     hull: str = "s175"
@@ -125,9 +131,11 @@ class ShipSetup:
     rudder: Literal["none", "command", "autopilot"] = "none"
     fins: Literal["none", "command", "controller"] = "none"
     t_foil: Literal["none", "command", "controller"] = "none"
+    added_resistance: Literal["none", "reflection", "total"] = "none"
 
     def __post_init__(self) -> None:
         for name, allowed in (
+            ("added_resistance", ("none", "reflection", "total")),
             ("rudder", ("none", "command", "autopilot")),
             ("fins", ("none", "command", "controller")),
             ("t_foil", ("none", "command", "controller")),
@@ -220,6 +228,10 @@ def build_force_models(
         )
     if setup.diffraction and wave_field is not None:
         models.append(Diffraction(database, wave_field))
+    if setup.added_resistance != "none" and wave_field is not None:
+        models.append(
+            AddedResistance.from_hull(hull, wave_field, components=setup.added_resistance)
+        )
     if setup.viscous_roll:
         keel = None
         if setup.bilge_keels:
