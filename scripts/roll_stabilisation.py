@@ -64,6 +64,7 @@ SNNM model), ``quasi_steady_speed_loss_percent`` (SNNM alone), ``regular_wave_si
 
 from __future__ import annotations
 
+import dataclasses
 import os
 
 for _var in ("NUMBA_NUM_THREADS", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -81,13 +82,12 @@ from scipy.signal import welch  # noqa: E402
 from ship_gym.control.actuators import FIN_SERVO  # noqa: E402
 from ship_gym.dynamics.ship import (  # noqa: E402
     ShipSetup,
-    build_force_models,
-    wave_field_for,
+    build_simulator,
 )
 from ship_gym.dynamics.simulator import Simulator  # noqa: E402
 from ship_gym.forces.added_resistance import AddedResistance  # noqa: E402
 from ship_gym.forces.base import ForceContext  # noqa: E402
-from ship_gym.hull import equilibrium, load_hull  # noqa: E402
+from ship_gym.hull import load_hull  # noqa: E402
 from ship_gym.hydro import load_database  # noqa: E402
 from ship_gym.hydro.rao import natural_frequency  # noqa: E402
 from ship_gym.kinematics import rotation_matrix  # noqa: E402
@@ -110,28 +110,11 @@ def build(
     *,
     added_resistance: bool = False,
 ) -> tuple[Simulator, AddedResistance | None]:
-    """The simulator of ``build_simulator`` (same models, state and commands), optionally with
-    the SNNM added resistance appended to the force list."""
-    hull = load_hull(setup.hull, **setup.hull_overrides)
-    db = load_database(setup.database)
-    wave_field = wave_field_for(sea, beta, np.random.default_rng(seed))
-    models, commands = build_force_models(setup, hull, db, wave_field, sea, beta)
-    raw = None
-    if added_resistance:
-        raw = AddedResistance.from_hull(hull, wave_field)
-        models.append(raw)
-    sim = Simulator(
-        hull,
-        models,
-        wave_field=wave_field,
-        forward_speed=setup.speed,
-        dt=setup.dt,
-        integrator=setup.integrator,
-        free_dofs=setup.free_dofs,
-    )
-    sim.commands = dict(commands)
-    eq = equilibrium(hull)
-    sim.reset(eta=np.array([0.0, 0.0, eq.heave, 0.0, eq.trim, 0.0]))
+    """The simulator of ``build_simulator`` with, optionally, the full SNNM added resistance
+    (``added_resistance="total"``), and that model (or None)."""
+    setup = dataclasses.replace(setup, added_resistance="total" if added_resistance else "none")
+    sim = build_simulator(setup, sea, wave_heading=beta, rng=np.random.default_rng(seed))
+    raw = next((f for f in sim.forces if isinstance(f, AddedResistance)), None)
     return sim, raw
 
 

@@ -76,6 +76,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ship_gym.conventions import ROLL, SURGE
 from ship_gym.dynamics.ship import Sea, ShipSetup, build_force_models
+from ship_gym.dynamics.simulator import left_hand_side
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.forces.diffraction import Diffraction
 from ship_gym.forces.froude_krylov import (
@@ -980,14 +981,7 @@ class BatchSimulator:
         self.dt = float(dt)
         self.integrator_name: BatchIntegratorName = integrator
         self.max_abs_velocity = float(max_abs_velocity)
-        self.free = np.ones(6, bool) if free_dofs is None else np.asarray(free_dofs, bool)
-        if self.free.shape != (6,):
-            raise ValueError(f"free_dofs must have 6 booleans, got {free_dofs!r}")
-        self.mass_rb = hull.mass.rigid_body_matrix()
-        a_lhs = np.zeros((6, 6))
-        for f in self.forces:
-            if f.added_mass is not None:
-                a_lhs = a_lhs + np.asarray(f.added_mass, float)
+        self.free, self.mass_rb, a_lhs = left_hand_side(hull, self.forces, free_dofs)
         self.added_mass_lhs = a_lhs
         idx = np.flatnonzero(self.free)
         self._free_idx = idx

@@ -85,6 +85,37 @@ class SimulationResult:
         return ds
 
 
+def left_hand_side(
+    hull: Hull, forces: Sequence, free_dofs: Sequence[bool] | None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Held-DOF mask, rigid-body mass matrix and the added mass the models put on the left.
+
+    Parameters
+    ----------
+    hull : Hull
+        Mass properties.
+    forces : sequence
+        Force models; each may declare ``added_mass`` (6×6) for the left-hand side.
+    free_dofs : sequence of bool or None
+        Which DOFs are integrated (None: all).
+
+    Returns
+    -------
+    free : numpy.ndarray
+        (6,) bool.
+    mass_rb, added_mass : numpy.ndarray
+        (6, 6) M_RB about O and Σ A_lhs [kg, kg·m, kg·m²].
+    """
+    free = np.ones(6, bool) if free_dofs is None else np.asarray(free_dofs, bool)
+    if free.shape != (6,):
+        raise ValueError(f"free_dofs must have 6 booleans, got {free_dofs!r}")
+    a_lhs = np.zeros((6, 6))
+    for f in forces:
+        if f.added_mass is not None:
+            a_lhs = a_lhs + np.asarray(f.added_mass, float)
+    return free, hull.mass.rigid_body_matrix(), a_lhs
+
+
 class Simulator:
     """Advance a ship in waves by a fixed physics step.
 
@@ -140,14 +171,7 @@ class Simulator:
         self.forward_speed = float(forward_speed)
         self.dt = float(dt)
         self.max_abs_velocity = float(max_abs_velocity)
-        self.free = np.ones(6, bool) if free_dofs is None else np.asarray(free_dofs, bool)
-        if self.free.shape != (6,):
-            raise ValueError(f"free_dofs must have 6 booleans, got {free_dofs!r}")
-        self.mass_rb = hull.mass.rigid_body_matrix()
-        a_lhs = np.zeros((6, 6))
-        for f in self.forces:
-            if f.added_mass is not None:
-                a_lhs = a_lhs + np.asarray(f.added_mass, float)
+        self.free, self.mass_rb, a_lhs = left_hand_side(hull, self.forces, free_dofs)
         self.added_mass_lhs = a_lhs
         m = self.mass_rb + a_lhs
         idx = np.flatnonzero(self.free)

@@ -21,6 +21,7 @@ to the speed where thrust balances calm-water resistance, the SNNM mean added re
 mean wave force the simulator's nonlinear Froude–Krylov model already produces.
 """
 
+import dataclasses
 import os
 
 import numpy as np
@@ -29,12 +30,10 @@ from scipy.optimize import brentq
 
 from ship_gym.control.actuators import FIN_SERVO
 from ship_gym.control.stabilisers import FinController, control_derivative
-from ship_gym.dynamics.ship import ShipSetup, build_force_models, wave_field_for
-from ship_gym.dynamics.simulator import Simulator
+from ship_gym.dynamics.ship import ShipSetup, build_simulator
 from ship_gym.forces.added_resistance import AddedResistance
 from ship_gym.forces.base import ForceContext
 from ship_gym.forces.fins import RollFins
-from ship_gym.hull import equilibrium, load_hull
 from ship_gym.hydro import load_database
 from ship_gym.hydro.rao import natural_frequency
 from ship_gym.kinematics import rotation_matrix
@@ -49,19 +48,11 @@ def database():
 
 
 def _build(setup, sea, beta, seed, *, added_resistance=False):
-    """``build_simulator`` with an optional AddedResistance appended to the force list."""
-    hull = load_hull(setup.hull)
-    db = load_database(setup.database)
-    field = wave_field_for(sea, beta, np.random.default_rng(seed))
-    models, commands = build_force_models(setup, hull, db, field, sea, beta)
-    raw = None
-    if added_resistance:
-        raw = AddedResistance.from_hull(hull, field)
-        models.append(raw)
-    sim = Simulator(hull, models, wave_field=field, forward_speed=setup.speed, dt=setup.dt)
-    sim.commands = dict(commands)
-    eq = equilibrium(hull)
-    sim.reset(eta=np.array([0.0, 0.0, eq.heave, 0.0, eq.trim, 0.0]))
+    """The simulator of ``build_simulator`` with, optionally, the full SNNM added resistance
+    (``added_resistance="total"``), and that model (or None)."""
+    setup = dataclasses.replace(setup, added_resistance="total" if added_resistance else "none")
+    sim = build_simulator(setup, sea, wave_heading=beta, rng=np.random.default_rng(seed))
+    raw = next((f for f in sim.forces if isinstance(f, AddedResistance)), None)
     return sim, raw
 
 
