@@ -70,11 +70,9 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-import numpy as np
-
 from ship_gym.conventions import RHO_SEAWATER
-from ship_gym.forces.base import ForceContext, ForceModel
-from ship_gym.forces.lifting_surface import LiftingSurface, LiftSlopeModel, SurfaceLoads
+from ship_gym.forces.base import ForceContext
+from ship_gym.forces.lifting_surface import LiftingSurface, LiftSlopeModel, SurfaceGroup
 
 __all__ = ["RollFins", "SternFlaps", "TFoil"]
 
@@ -89,7 +87,7 @@ def _finite(name: str, value: object) -> float:
     return v
 
 
-class _ControlSurfaces(ForceModel):
+class _ControlSurfaces(SurfaceGroup):
     """Lifting surfaces moved by one command; shared machinery of fins, T-foil and flaps."""
 
     command_key: str = ""
@@ -115,7 +113,7 @@ class _ControlSurfaces(ForceModel):
         cmd = _finite(f"commands[{key!r}]", ctx.commands.get(key, 0.0))
         return min(max(cmd, -self.max_angle), self.max_angle)
 
-    def _velocities(self, ctx: ForceContext) -> list[tuple[float, float, float]]:
+    def inflow_velocities(self, ctx: ForceContext) -> list[tuple[float, float, float]]:
         try:
             nu = tuple(float(c) for c in ctx.nu)
         except (TypeError, ValueError):
@@ -128,22 +126,6 @@ class _ControlSurfaces(ForceModel):
             vx, vy, vz = s.rigid_body_components(*nu)
             out.append((k * vx, vy, vz))
         return out
-
-    def loads(self, ctx: ForceContext) -> list[SurfaceLoads]:
-        """Per-surface loads at the current state and command."""
-        delta = self.angle(ctx)
-        return [
-            s.loads(vel, delta) for s, vel in zip(self.surfaces, self._velocities(ctx), strict=True)
-        ]
-
-    def evaluate(self, ctx: ForceContext, states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Sum of the surfaces' forces and moments about O (body axes) [N, N·m]; no states."""
-        delta = self.angle(ctx)
-        total = [0.0] * 6
-        for s, (vx, vy, vz) in zip(self.surfaces, self._velocities(ctx), strict=True):
-            f = s.components(vx, vy, vz, delta)[6]
-            total = [a + b for a, b in zip(total, f, strict=True)]
-        return np.array(total), np.zeros(0)
 
 
 class RollFins(_ControlSurfaces):

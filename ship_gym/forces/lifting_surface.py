@@ -110,10 +110,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ship_gym.conventions import RHO_SEAWATER
+from ship_gym.forces.base import ForceContext, ForceModel
 
 __all__ = [
     "LiftSlopeModel",
     "LiftingSurface",
+    "SurfaceGroup",
     "SurfaceLoads",
     "lift_slope",
 ]
@@ -529,3 +531,38 @@ class LiftingSurface:
             f"AR_e={self.effective_aspect_ratio:.3g}, C_Lα={self.lift_slope:.3g}/rad, "
             f"stall={math.degrees(self.stall_angle):.3g}°)"
         )
+
+
+class SurfaceGroup(ForceModel):
+    """Force model of lifting surfaces deflected together by one angle (rudder(s), fins, foils).
+
+    Subclasses provide :meth:`angle` (the applied deflection) and :meth:`inflow_velocities` (the
+    water velocity relative to each surface); this class sums the surfaces' loads.
+    """
+
+    surfaces: list[LiftingSurface]
+
+    def angle(self, ctx: ForceContext) -> float:
+        """Applied deflection δ [rad]."""
+        raise NotImplementedError
+
+    def inflow_velocities(self, ctx: ForceContext) -> list[tuple[float, float, float]]:
+        """Velocity (body axes) of each surface relative to the water [m/s]."""
+        raise NotImplementedError
+
+    def loads(self, ctx: ForceContext) -> list[SurfaceLoads]:
+        """Per-surface loads at the current state and command."""
+        delta = self.angle(ctx)
+        return [
+            s.loads(vel, delta)
+            for s, vel in zip(self.surfaces, self.inflow_velocities(ctx), strict=True)
+        ]
+
+    def evaluate(self, ctx: ForceContext, states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Sum of the surfaces' forces and moments about O (body axes) [N, N·m]; no states."""
+        delta = self.angle(ctx)
+        total = [0.0] * 6
+        for s, (vx, vy, vz) in zip(self.surfaces, self.inflow_velocities(ctx), strict=True):
+            f = s.components(vx, vy, vz, delta)[6]
+            total = [a + b for a, b in zip(total, f, strict=True)]
+        return np.array(total), np.zeros(0)

@@ -102,8 +102,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.conventions import RHO_SEAWATER
-from ship_gym.forces.base import ForceContext, ForceModel
-from ship_gym.forces.lifting_surface import LiftingSurface, LiftSlopeModel, SurfaceLoads
+from ship_gym.forces.base import ForceContext
+from ship_gym.forces.lifting_surface import LiftingSurface, LiftSlopeModel, SurfaceGroup
 
 __all__ = ["Rudder", "slipstream_velocity"]
 
@@ -190,7 +190,7 @@ def slipstream_velocity(
     return _slipstream(u_a, t, d, x, rho)
 
 
-class Rudder(ForceModel):
+class Rudder(SurfaceGroup):
     """Spade rudder(s) at the stern (force model ``"rudder"``); S175 defaults.
 
     Reads δ [rad] from ``ctx.commands["rudder"]`` (missing → 0; positive turns the ship to
@@ -365,22 +365,13 @@ class Rudder(ForceModel):
         """δ [rad] from ``ctx.commands["rudder"]`` (0 if absent)."""
         return _finite('commands["rudder"]', ctx.commands.get("rudder", 0.0))
 
-    def loads(self, ctx: ForceContext) -> list[SurfaceLoads]:
-        """Per-rudder :class:`~ship_gym.forces.lifting_surface.SurfaceLoads`."""
-        delta = self.rudder_angle(ctx)
-        return [
-            s.loads(vel, delta) for s, vel in zip(self.surfaces, self._inflow(ctx), strict=True)
-        ]
+    def angle(self, ctx: ForceContext) -> float:
+        """The applied deflection (:meth:`rudder_angle`) for :class:`SurfaceGroup`."""
+        return self.rudder_angle(ctx)
 
-    # ------------------------------------------------------------------ ForceModel
-    def evaluate(self, ctx: ForceContext, states: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Rudder force and moment about O (body axes) [N, N·m]; no states."""
-        delta = self.rudder_angle(ctx)
-        total = [0.0] * 6
-        for s, (vx, vy, vz) in zip(self.surfaces, self._inflow(ctx), strict=True):
-            f = s.components(vx, vy, vz, delta)[6]
-            total = [a + b for a, b in zip(total, f, strict=True)]
-        return np.array(total), np.zeros(0)
+    def inflow_velocities(self, ctx: ForceContext) -> list[tuple[float, float, float]]:
+        """Rudder inflow, eq. (1)–(4), for :class:`SurfaceGroup` [m/s]."""
+        return self._inflow(ctx)
 
     def __repr__(self) -> str:
         s = self.surface
