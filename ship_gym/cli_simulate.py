@@ -19,19 +19,36 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--hull", default="s175")
     p.add_argument("--database", default="s175", help="'s175' or a NetCDF database")
     p.add_argument("--speed", type=float, default=0.0, help="forward speed [m/s]")
-    p.add_argument("--heading-deg", type=float, default=180.0,
-                   help="wave heading β [deg]: 0 following, 90 beam (from port), 180 head seas")
+    p.add_argument(
+        "--heading-deg",
+        type=float,
+        default=180.0,
+        help="wave heading β [deg]: 0 following, 90 beam (from port), 180 head seas",
+    )
     sea = p.add_mutually_exclusive_group()
-    sea.add_argument("--regular", type=float, nargs=2, metavar=("H", "LAMBDA"),
-                     help="regular wave height [m] and length [m]")
-    sea.add_argument("--irregular", type=float, nargs=2, metavar=("HS", "TP"),
-                     help="JONSWAP significant height [m] and peak period [s]")
+    sea.add_argument(
+        "--regular",
+        type=float,
+        nargs=2,
+        metavar=("H", "LAMBDA"),
+        help="regular wave height [m] and length [m]",
+    )
+    sea.add_argument(
+        "--irregular",
+        type=float,
+        nargs=2,
+        metavar=("HS", "TP"),
+        help="JONSWAP significant height [m] and peak period [s]",
+    )
     p.add_argument("--components", type=int, default=50, help="irregular-sea components")
     p.add_argument("--seed", type=int, default=0, help="seed of the irregular sea")
     p.add_argument("--duration", type=float, default=300.0, help="simulated time [s]")
     p.add_argument("--dt", type=float, default=0.05, help="physics time step [s]")
-    p.add_argument("--radiation", default="state_space",
-                   choices=["state_space", "convolution", "2a", "2b", "none"])
+    p.add_argument(
+        "--radiation",
+        default="state_space",
+        choices=["state_space", "convolution", "2a", "2b", "none"],
+    )
     p.add_argument("--integrator", default="rk4", choices=["rk4", "abm", "holloway"])
     p.add_argument("--no-diffraction", action="store_true")
     p.add_argument("--no-viscous", action="store_true")
@@ -65,18 +82,20 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.regular is not None:
         sea = RegularWave(height=args.regular[0], wavelength=args.regular[1])
     elif args.irregular is not None:
-        sea = IrregularSea(hs=args.irregular[0], tp=args.irregular[1],
-                           n_components=args.components)
+        sea = IrregularSea(hs=args.irregular[0], tp=args.irregular[1], n_components=args.components)
     else:
         sea = None
-    sim = build_simulator(setup, sea, wave_heading=np.radians(args.heading_deg),
-                          rng=np.random.default_rng(args.seed))
+    sim = build_simulator(
+        setup, sea, wave_heading=np.radians(args.heading_deg), rng=np.random.default_rng(args.seed)
+    )
     start = time.perf_counter()
     result = sim.run(args.duration, progress=True)
     wall = time.perf_counter() - start
-    print(f"simulated {args.duration:.0f} s in {wall:.1f} s wall ({args.duration / wall:.1f}× "
-          f"real time); max |roll| {np.degrees(np.abs(result.eta[:, 3]).max()):.2f} deg, "
-          f"max |pitch| {np.degrees(np.abs(result.eta[:, 4]).max()):.2f} deg")
+    print(
+        f"simulated {args.duration:.0f} s in {wall:.1f} s wall ({args.duration / wall:.1f}× "
+        f"real time); max |roll| {np.degrees(np.abs(result.eta[:, 3]).max()):.2f} deg, "
+        f"max |pitch| {np.degrees(np.abs(result.eta[:, 4]).max()):.2f} deg"
+    )
     ds = result.to_dataset()
     ds.attrs.update({k: str(v) for k, v in vars(args).items() if k != "func"})
     out = Path(args.output)
@@ -88,8 +107,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             frame[f"nu_{name}"] = result.nu[:, i]
         header = ",".join(frame)
         table = np.column_stack(list(frame.values()))
-        atomic_write(out, lambda p: np.savetxt(p, table, delimiter=",", header=header,
-                                               comments=""))
+        atomic_write(out, lambda p: np.savetxt(p, table, delimiter=",", header=header, comments=""))
     else:
         from ship_gym.hydro.database import netcdf_engine
 
