@@ -429,23 +429,30 @@ def oscillatory_integral(
     tt = _as_times(t)
     trailing = ff.shape[1:]
     f2 = ff.reshape(xx.size, -1)
-    if method == "filon":
-        out = _filon(xx, f2, tt)
-    elif method == "simpson":
-        out = _simpson(xx, f2, tt)
-    elif method == "trapezoid":
-        out = _trapezoid(xx, f2, tt)
-    else:
-        if xx.size < 3:
-            raise ValueError(f"method='fft' needs at least 3 samples, got {xx.size}")
+    if method == "fft":
         if xx[0] != 0.0:
             raise ValueError(f"method='fft' needs a grid starting at 0, got x[0] = {xx[0]}")
         if not (isinstance(n_fft, int | np.integer) and n_fft >= 8):
             raise ValueError(f"n_fft={n_fft!r}; expected an integer ≥ 8")
         if not fft_oversample >= 1.0:
             raise ValueError(f"fft_oversample={fft_oversample!r}; expected a number ≥ 1")
-        out = _fft_transform(xx, f2, tt, int(n_fft), float(fft_oversample))
+    out = _quadrature(method, xx, f2, tt, n_fft, fft_oversample)
     return out.reshape((tt.size, *trailing))
+
+
+def _quadrature(
+    method: str, x: np.ndarray, f: np.ndarray, t: np.ndarray, n_fft: int, fft_oversample: float
+) -> np.ndarray:
+    """∫ f(x) e^{ixt} dx on the samples (n_x, m) by the named rule → (n_t, m) complex."""
+    if method == "filon":
+        return _filon(x, f, t)
+    if method == "simpson":
+        return _simpson(x, f, t)
+    if method == "trapezoid":
+        return _trapezoid(x, f, t)
+    if x.size < 3:
+        raise ValueError(f"method='fft' needs at least 3 samples, got {x.size}")
+    return _fft_transform(x, f, t, int(n_fft), float(fft_oversample))
 
 
 # --------------------------------------------------------------------------------------------
@@ -536,16 +543,7 @@ def _kernel_transform(
         f = np.concatenate([low_value[None, :], f], axis=0)
     if tail == "taper":
         f = f * _hann_taper(x, taper_fraction)[:, None]
-    if method == "filon":
-        out = _filon(x, f, t)
-    elif method == "simpson":
-        out = _simpson(x, f, t)
-    elif method == "trapezoid":
-        out = _trapezoid(x, f, t)
-    else:
-        if x.size < 3:
-            raise ValueError(f"method='fft' needs at least 3 frequencies, got {x.size}")
-        out = _fft_transform(x, f, t, n_fft, fft_oversample)
+    out = _quadrature(method, x, f, t, n_fft, fft_oversample)
     if tail == "power":
         out = out + _power_tail(float(x[-1]), f[-1], exponents, t)
     res = out.real if part == "real" else out.imag
