@@ -2,17 +2,23 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import stat
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
 
-def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
+def atomic_write(
+    path: str | Path, write: Callable[[Path], None], *, make_parents: bool = True
+) -> Path:
     """Write a file through ``write(tmp_path)`` then atomically move it to ``path``.
 
     The temporary file lives in the target directory (same file system, so ``os.replace`` is
-    atomic); if ``write`` raises, it is removed and an existing ``path`` is left untouched.
+    atomic) and is flushed to disk before the move; if ``write`` raises, it is removed and an
+    existing ``path`` is left untouched. The result keeps the permissions of the file it
+    replaces, or gets 0644 when new (not ``mkstemp``'s private 0600).
 
     Parameters
     ----------
@@ -20,17 +26,30 @@ def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
         Destination file.
     write : callable
         Writes the complete file to the path it is given.
+    make_parents : bool
+        Create missing parent directories (otherwise a missing directory raises
+        ``FileNotFoundError``).
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    directory = path.parent if str(path.parent) else Path(".")
+    if make_parents:
+        directory.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
     os.close(fd)
     tmp_path = Path(tmp)
     try:
         write(tmp_path)
+        with open(tmp_path, "rb+") as fh:
+            os.fsync(fh.fileno())
+        try:
+            mode = stat.S_IMODE(path.stat().st_mode)
+        except FileNotFoundError:
+            mode = 0o644
+        os.chmod(tmp_path, mode)
         os.replace(tmp_path, path)
     except BaseException:
-        tmp_path.unlink(missing_ok=True)
+        with contextlib.suppress(OSError):
+            tmp_path.unlink()
         raise
     return path
 

@@ -31,12 +31,9 @@ the target directory and :func:`os.replace`, so a failed write never corrupts an
 
 from __future__ import annotations
 
-import contextlib
 import os
 import re
-import stat
 import struct
-import tempfile
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -46,6 +43,7 @@ import numpy as np
 
 from ship_gym.conventions import GRAVITY
 from ship_gym.hull.mesh import MeshError, PanelMesh, mesh_from_polygons
+from ship_gym.io_utils import atomic_write
 
 __all__ = ["MESH_FORMATS", "MeshFileError", "detect_format", "read_mesh", "write_mesh"]
 
@@ -390,24 +388,11 @@ def _floats(tokens: Sequence[str], path: Path, what: str) -> np.ndarray:
 
 
 def _atomic_write(path: Path, write: Callable[[BinaryIO], None]) -> None:
-    directory = path.parent if str(path.parent) else Path(".")
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
-    tmp = Path(tmp_name)
-    try:
-        with os.fdopen(fd, "wb") as fh:
+    def to_file(tmp: Path) -> None:
+        with open(tmp, "wb") as fh:
             write(fh)
-            fh.flush()
-            os.fsync(fh.fileno())
-        try:
-            mode = stat.S_IMODE(path.stat().st_mode)
-        except FileNotFoundError:
-            mode = 0o644
-        os.chmod(tmp, mode)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            tmp.unlink()
-        raise
+
+    atomic_write(path, to_file, make_parents=False)
 
 
 def _fmt(values: np.ndarray) -> str:

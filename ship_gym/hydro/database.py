@@ -51,7 +51,6 @@ from __future__ import annotations
 
 import importlib.util
 import os
-import tempfile
 from importlib import resources
 from pathlib import Path
 from typing import NamedTuple
@@ -61,6 +60,7 @@ import xarray as xr
 
 from ship_gym.conventions import BODY_FRAME, DOF_NAMES
 from ship_gym.hydro import frames
+from ship_gym.io_utils import atomic_write
 
 FORMAT_VERSION: int = 1
 """Value of ``attrs["ship_gym_format"]`` written by :func:`save_database`."""
@@ -145,18 +145,11 @@ def save_database(ds: xr.Dataset, path: str | os.PathLike) -> Path:
         if out[name].dtype.kind in "OU":
             out = out.assign_coords({name: out[name].astype(str)})
     out.attrs["ship_gym_format"] = FORMAT_VERSION
-    fd, tmp_name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    try:
-        out.to_netcdf(tmp_name, engine=netcdf_engine(), format="NETCDF4")
-        os.replace(tmp_name, path)
-    except BaseException:
-        try:
-            os.unlink(tmp_name)
-        except OSError:
-            pass
-        raise
-    return path
+    return atomic_write(
+        path,
+        lambda tmp: out.to_netcdf(tmp, engine=netcdf_engine(), format="NETCDF4"),
+        make_parents=False,
+    )
 
 
 def _merge_ours(ds: xr.Dataset) -> xr.Dataset:
