@@ -1,0 +1,505 @@
+"""One task, two faces: N episodes stepped together, seen as a ``gymnasium.Env`` or a ``VectorEnv``.
+
+An environment author writes one :class:`BatchedTask`: the physics, observations, rewards and
+termination of N independent episodes held in arrays with a leading episode axis (for the ship
+tasks, one :class:`ship_gym.dynamics.batch.BatchSimulator` holding N ships). Two generic
+wrappers turn it into Gymnasium objects:
+
+* :class:`TaskEnv` — one episode (N = 1), a ``gymnasium.Env``: what ``gymnasium.make`` returns
+  (wrapped in ``TimeLimit`` by the registration's ``max_episode_steps``);
+* :class:`TaskVectorEnv` — N episodes in one call, a ``gymnasium.vector.VectorEnv``: what
+  ``gymnasium.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")`` returns.
+
+Both run the *same* code path, so episode i of a vector env reset with ``seed=s`` is the single
+env reset with ``seed=s + i`` (same sea, same trajectory, to the last bit): a policy can be
+trained batched and evaluated single, on identical seas.
+
+Rules shared by every environment (DESIGN.md §4):
+
+* actions are ``Box(-1, 1, float32)``; a non-finite action or one of the wrong shape raises
+  ``ValueError``; finite actions outside [-1, 1] are clipped;
+* the reward is the sum of the weighted terms of :attr:`TaskStep.reward_terms`, each reported as
+  ``info["reward_<term>"]``; the Safe-RL cost is ``info["cost"]``; ``info["time"]`` is the
+  episode time [s];
+* observation spaces have finite bounds (the checkers of Gymnasium and stable-baselines3 warn on
+  infinite ones); the wrappers clip observations to them as a last guard, so a task documents
+  bounds its physical values stay inside in normal operation;
+* capsize is ``terminated``; the time limit is ``truncated`` (``TimeLimit`` for the single env,
+  the vector env's own step counter); the single env never resets itself;
+* all randomness comes from the episode's generator (``self.np_random`` for the single env, one
+  generator per episode for the vector env), so ``reset(seed=s)`` reproduces the same sea.
+
+Autoreset of the vector env follows Gymnasium 1.x: ``AutoresetMode.NEXT_STEP`` (default; the
+step after an episode ended resets it, returns its first observation with reward 0 and ignores
+its action) or ``AutoresetMode.SAME_STEP`` (the episode is reset in the step that ended it;
+its last observation and info are in ``info["final_obs"]`` / ``info["final_info"]``, what the
+stable-baselines3 adapter :mod:`ship_gym.envs.sb3` needs). Partial resets through
+``reset(options={"reset_mask": mask})`` are supported.
+"""
+
+from __future__ import annotations
+
+import abc
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, ClassVar
+
+import gymnasium
+import numpy as np
+from gymnasium import spaces
+from gymnasium.utils import seeding
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:
+    from ship_gym.envs.rendering import HumanViewer, RenderSnapshot
+
+__all__ = ["BatchedTask", "TaskEnv", "TaskStep", "TaskVectorEnv", "validate_actions"]
+
+RENDER_MODES = ("human", "rgb_array")
+
+
+@dataclass(frozen=True)
+class TaskStep:
+    """Outcome of one control step for all N episodes of a task.
+
+    Attributes
+    ----------
+    reward_terms : Mapping[str, NDArray]
+        Weighted reward terms, name → (N,) [-]; the reward is their sum.
+    cost : NDArray
+        (N,) Safe-RL cost ≥ 0 (e.g. dangerous-roll exceedance) [-].
+    terminated : NDArray
+        (N,) bool: the episode reached a terminal state (capsize, divergence).
+    info : Mapping[str, NDArray]
+        Further per-episode diagnostics, name → (N,) (e.g. ``"capsized"``, ``"roll_deg"``).
+    """
+
+    reward_terms: Mapping[str, NDArray]
+    cost: NDArray
+    terminated: NDArray
+    info: Mapping[str, NDArray]
+
+    def reward(self) -> NDArray:
+        """Σ of the weighted terms, (N,) float64, summed in the terms' order."""
+        total = np.zeros_like(np.asarray(self.cost, dtype=np.float64))
+        for value in self.reward_terms.values():
+            total = total + np.asarray(value, dtype=np.float64)
+        return total
+
+
+class BatchedTask(abc.ABC):
+    """N independent episodes of one task, stepped together (the single env is N = 1).
+
+    Subclasses set, in ``__init__``, :attr:`observation_space` and :attr:`action_space` (one
+    episode's, float32), :attr:`observation_names`, :attr:`action_names` (units in the names)
+    and :attr:`control_dt` [s], and validate their keyword arguments (typed, with units, listed
+    in the environment's docstring) with clear errors.
+    """
+
+    observation_space: spaces.Box
+    action_space: spaces.Box
+    observation_names: tuple[str, ...]
+    action_names: tuple[str, ...]
+    control_dt: float
+
+    def __init__(self, num_envs: int) -> None:
+        if isinstance(num_envs, bool) or not isinstance(num_envs, int | np.integer):
+            raise ValueError(f"num_envs must be a positive integer, got {num_envs!r}")
+        if num_envs < 1:
+            raise ValueError(f"num_envs must be a positive integer, got {num_envs!r}")
+        self.num_envs = int(num_envs)
+
+    @abc.abstractmethod
+    def reset_episodes(
+        self,
+        ids: NDArray[np.int64],
+        rngs: Sequence[np.random.Generator],
+        options: Mapping[str, Any] | None,
+    ) -> None:
+        """Start new episodes ``ids``; all randomness of episode ``ids[k]`` from ``rngs[k]``."""
+
+    @abc.abstractmethod
+    def step(self, actions: NDArray) -> TaskStep:
+        """Advance every episode by :attr:`control_dt`.
+
+        ``actions`` is (N, n_act) float64, finite and inside [-1, 1]. Episodes that are over may
+        be advanced too (the wrapper resets them afterwards): a capsized or diverged ship being
+        stepped must not raise.
+        """
+
+    @abc.abstractmethod
+    def observations(self) -> NDArray:
+        """(N, n_obs) float32 observations, inside :attr:`observation_space`."""
+
+    def reset_info(self, ids: NDArray[np.int64]) -> Mapping[str, NDArray]:
+        """Per-episode information at reset (sampled sea, heading, loading…), name → (len(ids),)."""
+        return {}
+
+    def snapshot(self, i: int) -> RenderSnapshot:
+        """What :mod:`ship_gym.envs.rendering` draws for episode ``i``."""
+        raise NotImplementedError(f"{type(self).__name__} does not render")
+
+    def close(self) -> None:  # noqa: B027 - optional hook, nothing to release by default
+        """Release resources (nothing by default)."""
+
+
+def validate_actions(actions: ArrayLike, shape: tuple[int, ...]) -> NDArray:
+    """Actions as float64 of ``shape``, clipped to [-1, 1].
+
+    Raises
+    ------
+    ValueError
+        Wrong shape, or any NaN/inf entry (a diverging policy must fail loudly, not steer the
+        ship with NaN).
+    """
+    a = np.asarray(actions, dtype=np.float64)
+    if a.shape != shape:
+        if a.size == int(np.prod(shape)) and a.ndim <= len(shape):
+            a = a.reshape(shape)
+        else:
+            raise ValueError(f"action must have shape {shape}, got shape {a.shape}: {a!r}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"action must be finite (Box(-1, 1)), got {a!r}")
+    return np.clip(a, -1.0, 1.0)
+
+
+def _bounded(obs: NDArray, space: spaces.Box) -> NDArray[np.float32]:
+    """Observations as float32 clipped to the space's bounds (broadcast over episodes)."""
+    return np.clip(obs, space.low, space.high).astype(np.float32, copy=False)
+
+
+def _check_render_mode(render_mode: str | None) -> str | None:
+    if render_mode is not None and render_mode not in RENDER_MODES:
+        raise ValueError(f"render_mode must be one of {RENDER_MODES} or None, got {render_mode!r}")
+    return render_mode
+
+
+def _render_fps(control_dt: float) -> int:
+    return max(1, round(1.0 / float(control_dt)))
+
+
+class _Rendering:
+    """rgb_array / human rendering of one episode of a task (shared by both wrappers)."""
+
+    def __init__(self, render_mode: str | None) -> None:
+        self.render_mode = _check_render_mode(render_mode)
+        self._viewer: HumanViewer | None = None
+
+    def frame(self, task: BatchedTask, i: int) -> NDArray[np.uint8] | None:
+        from ship_gym.envs.rendering import HumanViewer, render_rgb
+
+        if self.render_mode == "rgb_array":
+            return render_rgb(task.snapshot(i))
+        if self.render_mode == "human":
+            if self._viewer is None:
+                self._viewer = HumanViewer()
+            self._viewer.show(task.snapshot(i))
+        return None
+
+    def close(self) -> None:
+        if self._viewer is not None:
+            self._viewer.close()
+            self._viewer = None
+
+
+class TaskEnv(gymnasium.Env):
+    """One episode of a :class:`BatchedTask` as a ``gymnasium.Env``.
+
+    Subclasses set :attr:`task_class` and write the environment's docstring (Gymnasium v5
+    template). Keyword arguments other than ``render_mode`` go to the task.
+    """
+
+    task_class: ClassVar[type[BatchedTask]]
+    metadata: ClassVar[dict[str, Any]] = {"render_modes": list(RENDER_MODES), "render_fps": 4}
+
+    def __init__(self, render_mode: str | None = None, **kwargs: Any) -> None:
+        self._rendering = _Rendering(render_mode)
+        self.render_mode = render_mode
+        self.task = self.task_class(num_envs=1, **kwargs)
+        self.observation_space = self.task.observation_space
+        self.action_space = self.task.action_space
+        self.metadata = {**type(self).metadata, "render_fps": _render_fps(self.task.control_dt)}
+        self._ids = np.zeros(1, dtype=np.int64)
+        self._steps = 0
+        self._has_reset = False
+
+    @property
+    def observation_names(self) -> tuple[str, ...]:
+        """Names (with units) of the observation entries."""
+        return self.task.observation_names
+
+    @property
+    def action_names(self) -> tuple[str, ...]:
+        """Names (with the physical scaling) of the action entries."""
+        return self.task.action_names
+
+    @property
+    def control_dt(self) -> float:
+        """Control time step [s]."""
+        return self.task.control_dt
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[NDArray[np.float32], dict[str, Any]]:
+        super().reset(seed=seed)
+        self.task.reset_episodes(self._ids, [self.np_random], options)
+        self._steps = 0
+        self._has_reset = True
+        info = {k: _item(v, 0) for k, v in self.task.reset_info(self._ids).items()}
+        info["time"] = 0.0
+        if self.render_mode == "human":
+            self.render()
+        return _bounded(self.task.observations()[0], self.observation_space), info
+
+    def step(
+        self, action: ArrayLike
+    ) -> tuple[NDArray[np.float32], float, bool, bool, dict[str, Any]]:
+        if not self._has_reset:
+            raise RuntimeError("call reset() before step()")
+        a = validate_actions(action, (1, *self.action_space.shape))
+        result = self.task.step(a)
+        self._steps += 1
+        info: dict[str, Any] = {f"reward_{k}": float(v[0]) for k, v in result.reward_terms.items()}
+        info["cost"] = float(result.cost[0])
+        info.update({k: _item(v, 0) for k, v in result.info.items()})
+        info["time"] = self._steps * self.task.control_dt
+        if self.render_mode == "human":
+            self.render()
+        return (
+            _bounded(self.task.observations()[0], self.observation_space),
+            float(result.reward()[0]),
+            bool(result.terminated[0]),
+            False,
+            info,
+        )
+
+    def render(self) -> NDArray[np.uint8] | None:
+        if self.render_mode is None:
+            gymnasium.logger.warn("render() called with render_mode=None: nothing to draw")
+            return None
+        return self._rendering.frame(self.task, 0)
+
+    def close(self) -> None:
+        self._rendering.close()
+        self.task.close()
+
+
+def _item(values: ArrayLike, i: int) -> Any:
+    v = np.asarray(values)[i]
+    return v.item() if isinstance(v, np.generic) else v
+
+
+class TaskVectorEnv(VectorEnv):
+    """N episodes of a :class:`BatchedTask` stepped in one call, a ``gymnasium.vector.VectorEnv``.
+
+    Parameters
+    ----------
+    num_envs : int
+        Number of episodes N.
+    render_mode : {"rgb_array", "human"}, optional
+        ``render()`` returns one frame per episode (rgb_array) or shows episode 0 (human).
+    max_episode_steps : int, optional
+        Time limit in control steps (``truncated``); ``make_vec`` passes the registered one.
+    autoreset_mode : AutoresetMode or str
+        ``NEXT_STEP`` (Gymnasium's default) or ``SAME_STEP``; ``DISABLED`` is refused.
+    **kwargs
+        The task's keyword arguments (as for the single env).
+    """
+
+    task_class: ClassVar[type[BatchedTask]]
+    metadata: ClassVar[dict[str, Any]] = {
+        "render_modes": list(RENDER_MODES),
+        "render_fps": 4,
+        "autoreset_mode": AutoresetMode.NEXT_STEP,
+    }
+
+    def __init__(
+        self,
+        num_envs: int = 1,
+        render_mode: str | None = None,
+        max_episode_steps: int | None = None,
+        autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
+        **kwargs: Any,
+    ) -> None:
+        try:
+            mode = AutoresetMode(autoreset_mode)
+        except ValueError:
+            raise ValueError(
+                f"autoreset_mode must be 'NextStep' or 'SameStep', got {autoreset_mode!r}"
+            ) from None
+        if mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP):
+            raise ValueError(f"autoreset_mode must be NEXT_STEP or SAME_STEP, got {mode!r}")
+        if max_episode_steps is not None and (
+            isinstance(max_episode_steps, bool)
+            or not isinstance(max_episode_steps, int | np.integer)
+            or max_episode_steps < 1
+        ):
+            raise ValueError(
+                f"max_episode_steps must be a positive integer or None, got {max_episode_steps!r}"
+            )
+        self._rendering = _Rendering(render_mode)
+        self.render_mode = render_mode
+        self.task = self.task_class(num_envs=num_envs, **kwargs)
+        self.num_envs = self.task.num_envs
+        self.max_episode_steps = None if max_episode_steps is None else int(max_episode_steps)
+        self.autoreset_mode = mode
+        self.single_observation_space = self.task.observation_space
+        self.single_action_space = self.task.action_space
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self.metadata = {
+            **type(self).metadata,
+            "render_fps": _render_fps(self.task.control_dt),
+            "autoreset_mode": mode,
+        }
+        n = self.num_envs
+        self._rngs: list[np.random.Generator | None] = [None] * n
+        self._steps = np.zeros(n, dtype=np.int64)
+        self._pending_reset = np.zeros(n, dtype=bool)
+        self._has_reset = False
+
+    @property
+    def observation_names(self) -> tuple[str, ...]:
+        """Names (with units) of one episode's observation entries."""
+        return self.task.observation_names
+
+    @property
+    def action_names(self) -> tuple[str, ...]:
+        """Names (with the physical scaling) of one episode's action entries."""
+        return self.task.action_names
+
+    @property
+    def control_dt(self) -> float:
+        """Control time step [s]."""
+        return self.task.control_dt
+
+    def _observations(self) -> NDArray[np.float32]:
+        return _bounded(self.task.observations(), self.single_observation_space)
+
+    def _seed(self, seed: int | Sequence[int | None] | None, ids: NDArray[np.int64]) -> None:
+        if seed is None:
+            seeds: list[int | None] = [None] * len(ids)
+        elif isinstance(seed, int | np.integer) and not isinstance(seed, bool):
+            seeds = [int(seed) + int(i) for i in ids]
+        else:
+            seeds = list(seed)  # type: ignore[arg-type]
+            if len(seeds) != self.num_envs:
+                raise ValueError(
+                    f"seed must be an int, None or a sequence of {self.num_envs} seeds, "
+                    f"got {seed!r}"
+                )
+            seeds = [seeds[int(i)] for i in ids]
+        for i, s in zip(ids, seeds, strict=True):
+            if s is not None or self._rngs[int(i)] is None:
+                self._rngs[int(i)], _ = seeding.np_random(s)
+
+    def _reset_ids(self, ids: NDArray[np.int64], options: Mapping[str, Any] | None) -> None:
+        if ids.size == 0:
+            return
+        self.task.reset_episodes(ids, [self._rngs[int(i)] for i in ids], options)  # type: ignore[misc]
+        self._steps[ids] = 0
+        self._pending_reset[ids] = False
+
+    def reset(
+        self,
+        *,
+        seed: int | Sequence[int | None] | None = None,
+        options: dict[str, Any] | None = None,
+    ) -> tuple[NDArray[np.float32], dict[str, Any]]:
+        options = dict(options or {})
+        mask = options.pop("reset_mask", None)
+        if mask is None:
+            ids = np.arange(self.num_envs, dtype=np.int64)
+        else:
+            mask = np.asarray(mask)
+            if mask.shape != (self.num_envs,) or mask.dtype != np.bool_:
+                raise ValueError(
+                    f"options['reset_mask'] must be a bool array of shape ({self.num_envs},), "
+                    f"got {mask!r}"
+                )
+            if not self._has_reset and not mask.all():
+                raise ValueError("the first reset() must reset every episode (reset_mask all True)")
+            ids = np.flatnonzero(mask).astype(np.int64)
+        self._seed(seed, ids)
+        self._reset_ids(ids, options or None)
+        self._has_reset = True
+        infos: dict[str, Any] = {}
+        mask_all = np.zeros(self.num_envs, dtype=bool)
+        mask_all[ids] = True
+        for key, value in self.task.reset_info(ids).items():
+            full = np.zeros(self.num_envs, dtype=np.asarray(value).dtype)
+            full[ids] = value
+            _put(infos, key, full, mask_all)
+        _put(infos, "time", np.zeros(self.num_envs), mask_all)
+        return self._observations(), infos
+
+    def step(
+        self, actions: ArrayLike
+    ) -> tuple[NDArray[np.float32], NDArray, NDArray, NDArray, dict[str, Any]]:
+        if not self._has_reset:
+            raise RuntimeError("call reset() before step()")
+        a = validate_actions(actions, (self.num_envs, *self.single_action_space.shape))
+        result = self.task.step(a)
+        stepped = ~self._pending_reset
+        self._steps[stepped] += 1
+        reward = result.reward()
+        terminated = np.asarray(result.terminated, dtype=bool).copy()
+        truncated = np.zeros(self.num_envs, dtype=bool)
+        if self.max_episode_steps is not None:
+            truncated = (self._steps >= self.max_episode_steps) & ~terminated
+
+        infos: dict[str, Any] = {}
+        for key, value in result.reward_terms.items():
+            _put(infos, f"reward_{key}", np.asarray(value, dtype=np.float64), stepped)
+        _put(infos, "cost", np.asarray(result.cost, dtype=np.float64), stepped)
+        for key, value in result.info.items():
+            _put(infos, key, np.asarray(value), stepped)
+        _put(infos, "time", self._steps * self.task.control_dt, stepped)
+
+        if self.autoreset_mode == AutoresetMode.NEXT_STEP:
+            ids = np.flatnonzero(self._pending_reset).astype(np.int64)
+            self._reset_ids(ids, None)
+            reward[ids] = 0.0
+            terminated[ids] = False
+            truncated[ids] = False
+            obs = self._observations()
+            self._pending_reset = terminated | truncated
+        else:
+            done = terminated | truncated
+            obs = self._observations()
+            if done.any():
+                final_obs = np.empty(self.num_envs, dtype=object)
+                for i in np.flatnonzero(done):
+                    final_obs[i] = obs[i].copy()
+                infos["final_obs"] = final_obs
+                infos["_final_obs"] = done.copy()
+                infos["final_info"] = {
+                    k: v for k, v in infos.items() if k not in ("final_obs", "_final_obs")
+                }
+                infos["_final_info"] = done.copy()
+                self._reset_ids(np.flatnonzero(done).astype(np.int64), None)
+                obs = self._observations()
+        if self.render_mode == "human":
+            self.render()
+        return obs, reward, terminated, truncated, infos
+
+    def render(self) -> tuple[NDArray[np.uint8], ...] | None:
+        if self.render_mode is None:
+            gymnasium.logger.warn("render() called with render_mode=None: nothing to draw")
+            return None
+        if self.render_mode == "human":
+            self._rendering.frame(self.task, 0)
+            return None
+        return tuple(self._rendering.frame(self.task, i) for i in range(self.num_envs))  # type: ignore[misc]
+
+    def close_extras(self, **kwargs: Any) -> None:
+        self._rendering.close()
+        self.task.close()
+
+
+def _put(infos: dict[str, Any], key: str, values: NDArray, mask: NDArray) -> None:
+    """Gymnasium vector-info layout: ``infos[key]`` (N,) and the mask ``infos["_" + key]``."""
+    infos[key] = np.asarray(values)
+    infos[f"_{key}"] = np.asarray(mask, dtype=bool).copy()

@@ -1,0 +1,75 @@
+"""The registered environment ids (``ship_gym/<Name>-v0``) and their entry points.
+
+Gymnasium 1.x does not read package entry points: ``import ship_gym`` calls
+:func:`register_envs`, and ``gymnasium.make("ship_gym:ship_gym/CourseKeeping-v0")`` imports
+``ship_gym`` first (the ``module:`` prefix), so the ids work in a fresh interpreter. Entry points
+are strings: registering imports no environment module (and no simulator).
+
+Each id has a single-episode ``entry_point`` (:class:`ship_gym.envs.base.TaskEnv`) and a batched
+``vector_entry_point`` (:class:`ship_gym.envs.base.TaskVectorEnv`, used by
+``gymnasium.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import gymnasium
+
+NAMESPACE = "ship_gym"
+VERSION = 0
+
+
+@dataclass(frozen=True)
+class EnvEntry:
+    """One registered environment.
+
+    Attributes
+    ----------
+    name : str
+        Name without namespace and version (``"CourseKeeping"``).
+    module : str
+        Module under :mod:`ship_gym.envs` holding ``<name>Env`` and ``<name>VectorEnv``.
+    max_episode_steps : int
+        Time limit in control steps (the ``TimeLimit`` wrapper of ``gymnasium.make``; the
+        vector env counts its own steps).
+    """
+
+    name: str
+    module: str
+    max_episode_steps: int
+
+    @property
+    def id(self) -> str:
+        return f"{NAMESPACE}/{self.name}-v{VERSION}"
+
+    @property
+    def entry_point(self) -> str:
+        return f"ship_gym.envs.{self.module}:{self.name}Env"
+
+    @property
+    def vector_entry_point(self) -> str:
+        return f"ship_gym.envs.{self.module}:{self.name}VectorEnv"
+
+
+ENTRIES: tuple[EnvEntry, ...] = (
+    EnvEntry("CourseKeeping", "course_keeping", 1000),
+    EnvEntry("RollStabilization", "roll_stabilization", 1000),
+    EnvEntry("RideControl", "ride_control", 1000),
+    EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500),
+    EnvEntry("RollOneDOF", "roll_one_dof", 1000),
+)
+ENV_IDS: tuple[str, ...] = tuple(e.id for e in ENTRIES)
+
+
+def register_envs() -> None:
+    """Register every ship_gym id with Gymnasium (idempotent)."""
+    for entry in ENTRIES:
+        if entry.id in gymnasium.registry:
+            continue
+        gymnasium.register(
+            id=entry.id,
+            entry_point=entry.entry_point,
+            vector_entry_point=entry.vector_entry_point,
+            max_episode_steps=entry.max_episode_steps,
+        )
