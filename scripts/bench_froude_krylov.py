@@ -5,9 +5,10 @@ Reference case: the S175 hull (``load_hull("s175")``: 2400 vertices, 4796 triang
 its calm-water equilibrium with 5° heel and a yaw, in a sea of 50 components (k uniform in
 0.01–0.3 rad/m, directions uniform over ±90°, Hs = 4 m). Measured in one run:
 
-* ``method="fast"`` and ``method="reference"`` time per evaluation (public API, Python overhead
-  included), their ratio and the largest difference of the two results (scaled by the largest
-  force and moment component), and the fast path's cost per (vertex, component) pair;
+* ``method="fast"``, ``method="fast32"`` (float32 wave sums) and ``method="reference"`` time
+  per evaluation (public API, Python overhead included), their ratios and the largest
+  difference of each fast result from the reference (scaled by the largest force and moment
+  component), and the fast paths' cost per (vertex, component) pair;
 * the batched kernel (:func:`froude_krylov_hydrostatic_batch`) throughput in ship evaluations per
   second for 1, 16 and 64 ships (serial, the default) and, with ``--parallel``, the numba-threaded
   variant (``parallel=True``: prange over ships, ``NUMBA_NUM_THREADS`` threads);
@@ -39,6 +40,7 @@ from ship_gym.forces.froude_krylov import (
     froude_krylov_hydrostatic_batch,
 )
 from ship_gym.hull import equilibrium, load_hull
+from ship_gym.io_utils import atomic_write_text
 from ship_gym.kinematics import rotation_matrix
 
 SHIP_COUNTS = (1, 16, 64)
@@ -115,10 +117,12 @@ def main(argv: list[str] | None = None) -> int:
             panels, waves, phasor, pos, rot, rho=hull.rho, g=hull.g, method=method
         )
 
-    fast, ref = run("fast"), run("reference")
+    fast, fast32, ref = run("fast"), run("fast32"), run("reference")
     scale = np.r_[[np.abs(ref[:3]).max()] * 3, [np.abs(ref[3:]).max()] * 3]
     err = float(np.max(np.abs(fast - ref) / scale))
+    err32 = float(np.max(np.abs(fast32 - ref) / scale))
     t_fast = _time(lambda: run("fast"), budget=2.0)
+    t_fast32 = _time(lambda: run("fast32"), budget=2.0)
     t_ref = _time(lambda: run("reference"), budget=2.0)
     print(f"S175: {n_v} vertices, {n_t} triangles, {n_c} wave components (Hs 4 m)")
     print(f"fast      : {t_fast * 1e6:9.1f} µs / evaluation")
@@ -126,6 +130,11 @@ def main(argv: list[str] | None = None) -> int:
     print(f"speed-up  : {t_ref / t_fast:9.1f} ×   (max scaled difference {err:.1e})")
     print(f"fast      : {t_fast * 1e9 / (n_v * n_c):9.2f} ns / (vertex, component) pair, all in")
     print(f"real time : {0.05 / t_fast:9.0f} × at dt = 0.05 s, one evaluation per step")
+    print(
+        f"fast32    : {t_fast32 * 1e6:9.1f} µs / evaluation, {t_fast / t_fast32:.2f}× the fast "
+        f"kernel, {t_fast32 * 1e9 / (n_v * n_c):.2f} ns / pair (max scaled difference from the "
+        f"reference {err32:.1e})"
+    )
 
     results: dict[str, object] = {
         "fast_us": t_fast * 1e6,
@@ -133,6 +142,9 @@ def main(argv: list[str] | None = None) -> int:
         "speedup": t_ref / t_fast,
         "ns_per_pair": t_fast * 1e9 / (n_v * n_c),
         "max_scaled_difference": err,
+        "fast32_us": t_fast32 * 1e6,
+        "fast32_max_scaled_difference": err32,
+        "fast32_speedup_vs_fast": t_fast / t_fast32,
         "n_vertices": n_v,
         "n_triangles": n_t,
         "n_components": n_c,
@@ -197,7 +209,7 @@ def main(argv: list[str] | None = None) -> int:
 
     if args.json is not None:
         args.json.parent.mkdir(parents=True, exist_ok=True)
-        args.json.write_text(json.dumps(results, indent=2) + "\n")
+        atomic_write_text(args.json, json.dumps(results, indent=2) + "\n")
     return 0
 
 

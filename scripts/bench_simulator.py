@@ -1,27 +1,37 @@
 #!/usr/bin/env python
 """Benchmark the 6-DOF simulator on the reference case "S175-full" (DESIGN.md §5).
 
-Reference case "S175-full": the S175 hull meshed to the deck (``load_hull("s175")``, 2400
-faces), free in 6 DOF at zero speed in head seas (β = 180°), JONSWAP Hs = 5 m, Tp = 11 s,
-γ = 3.3, 50 components (seed 0), radiation memory on, diffraction and Ikeda roll damping on,
-dt = 0.05 s. Two paths, timed in the same run:
+Reference case "S175-full": the S175 hull meshed to the deck with ≥ 1500 faces, free in 6 DOF
+at zero speed in head seas (β = 180°), JONSWAP Hs = 5 m, Tp = 11 s, γ = 3.3, 50 components
+(seed 0), radiation memory on, diffraction and Ikeda roll damping on, dt = 0.05 s. Timed in
+the same run:
 
-* fast path: state-space radiation memory + the numba Froude–Krylov kernel;
-* reference path: direct convolution of the retardation functions + the numpy Froude–Krylov
-  reference (``fk_method="reference"``).
+* **fast path**: :class:`ship_gym.dynamics.compiled_step.CompiledShip` (K steps per compiled
+  call; Holloway's μ-Taylor scheme, 1 force evaluation per step; state-space memory; the
+  Froude–Krylov kernel with float32 wave sums) on the 1500-face mesh (``MESH_1500``); also
+  with float64 wave sums and on the default 2400-face mesh;
+* **reference path**: :class:`Simulator` with direct convolution of the retardation functions
+  and the numpy Froude–Krylov reference (``fk_method="reference"``), Holloway, same meshes;
+* the Simulator/BatchSimulator paths (Python-level stepping) as before, RK4 and Holloway.
 
-Printed (and written with ``--json PATH``):
+The compiled-path ships start at t = 60 s, after the sea's 50 s ramp, so that they are timed in
+the full sea. Printed (and written with ``--json PATH``; the headline keys
+``realtime_factor_fast``, ``realtime_factor_reference``, ``speedup``, ``memory_cost_ratio``,
+``batched_ship_steps_per_s`` are CPU-time figures of the fast path and the reference path):
 
-* real-time factor (simulated s per wall s) of both paths, single ship, for RK4 (4 force
-  evaluations per step, the ``ShipSetup`` default) and Holloway's μ-Taylor scheme (1 evaluation
-  per step), and their ratio;
-* the cost split of a step by force model (µs per evaluation and % of the step; the rest is the
-  rigid-body terms, the context, the integrator and Python overhead);
-* the cost of the memory term relative to constant coefficients (Matusiak case 2b);
-* the accuracy of each integrator against RK4 at dt/2 over a short run (why RK4 is the
-  default);
-* the throughput of :class:`ship_gym.dynamics.batch.BatchSimulator` for 1, 16 and 64 ships
-  (ship-steps/s), and of 16 independent :class:`Simulator` objects for comparison.
+* real-time factor (simulated s per s) of every variant, wall and CPU time
+  (``time.perf_counter``, ``time.process_time``: on a shared machine the CPU time is the
+  steadier figure), and the fast/reference ratio;
+* the cost split of the fast path's step by term (each timed alone in a compiled loop,
+  :meth:`CompiledShip.term_costs`);
+* the cost of the memory term relative to constant coefficients (Matusiak case 2b), compiled;
+* the accuracy cost of the 1500-face mesh: GZ curve and heave/roll/pitch natural periods from
+  free decays, against 2400 and 9600 faces;
+* the Simulator tables (RK4/Holloway real-time factors, per-model cost split, memory vs 2b,
+  integrator accuracy against RK4 at dt/2);
+* throughput (ship-steps/s) of :class:`ship_gym.dynamics.batch.BatchSimulator` for 1, 16 and 64
+  ships, of independent :class:`Simulator` objects, and, with the fast path's settings, of
+  BatchSimulator and of N CompiledShips stepped in turn.
 
 Threads: ``NUMBA_NUM_THREADS``, ``OMP_NUM_THREADS``, ``OPENBLAS_NUM_THREADS`` and
 ``MKL_NUM_THREADS`` are set to 1 *before* numpy and numba are imported (no threadpoolctl in the
@@ -54,8 +64,13 @@ import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ship_gym.dynamics.batch import BatchSimulator, build_batch_simulator  # noqa: E402
+from ship_gym.dynamics.compiled_step import CompiledShip, build_compiled_ship  # noqa: E402
 from ship_gym.dynamics.ship import ShipSetup, build_simulator, wave_field_for  # noqa: E402
 from ship_gym.dynamics.simulator import Simulator  # noqa: E402
+from ship_gym.forces.froude_krylov import _fk_one_ship, _fk_one_ship_f32  # noqa: E402
+from ship_gym.hull import load_hull, righting_arm  # noqa: E402
+from ship_gym.io_utils import atomic_write_text  # noqa: E402
+from ship_gym.kinematics import rotation_matrix  # noqa: E402
 from ship_gym.waves.sea_state import IrregularSea  # noqa: E402
 
 DT = 0.05
@@ -200,6 +215,196 @@ def _batch_cost_split(batch: BatchSimulator, n_steps: int) -> dict[str, object]:
     return best
 
 
+# ============================================================================ compiled fast path
+# The S175 mesh at the smallest resolution the reference case allows (≥ 1500 faces): 50
+# sections, 10 panels per side below the waterline, 4 above, 2 across the deck (1500 faces).
+# Its GZ curve is within 4 mm of a 9600-face mesh up to 60° (the default 2400-face mesh: 2 mm);
+# printed below together with the natural periods from free decays.
+MESH_1500 = {"n_sections": 50, "n_below": 10, "n_above": 4, "n_deck": 2}
+MESHES = {"1500": MESH_1500, "2400": {}}
+FAST_MESH = "1500"
+FAST_PRECISION = "float32"
+# the compiled-path ships start at this time, after the sea's 50 s ramp: timed in full waves
+T_FULL_SEA = 1.2 * SEA.ramp_time
+
+
+def _timed(jobs: dict[str, tuple[Callable[[], None], int]], rounds: int) -> dict[str, dict]:
+    """Wall and CPU time per unit of each job: jobs round-robin, the fastest of ``rounds``
+    blocks for each clock (``time.perf_counter``, ``time.process_time``)."""
+    wall: dict[str, list[float]] = {k: [] for k in jobs}
+    cpu: dict[str, list[float]] = {k: [] for k in jobs}
+    for _ in range(rounds):
+        for name, (block, units) in jobs.items():
+            w0, c0 = time.perf_counter(), time.process_time()
+            block()
+            wall[name].append((time.perf_counter() - w0) / units)
+            cpu[name].append((time.process_time() - c0) / units)
+    return {k: {"wall": float(np.min(wall[k])), "cpu": float(np.min(cpu[k]))} for k in jobs}
+
+
+def _compiled(mesh: str, precision: str, **setup_kw) -> CompiledShip:
+    setup = ShipSetup(integrator="holloway", hull_overrides=dict(MESHES[mesh]), **setup_kw)
+    field = wave_field_for(SEA, HEADING, np.random.default_rng(0))
+    ship = build_compiled_ship(setup, field, sea=SEA, wave_heading=HEADING, precision=precision)
+    ship.reset(t0=T_FULL_SEA)
+    return ship
+
+
+def _advancer(ship: CompiledShip, n: int) -> Callable[[], None]:
+    def block() -> None:
+        ship.advance(n)
+
+    return block
+
+
+@numba.njit(cache=False)
+def _kernel_loop(n, kernel_args, single):  # pragma: no cover - compiled
+    """The Froude–Krylov kernel alone, n calls in compiled code (no Python overhead)."""
+    out = np.zeros(6)
+    for _ in range(n):
+        if single:
+            _fk_one_ship_f32(*kernel_args, out)
+        else:
+            _fk_one_ship(*kernel_args, out)
+    return out
+
+
+def _kernel_args(ship: CompiledShip) -> tuple:
+    """The kernel's arguments at the ship's current state (its sea folded to O)."""
+    lay = ship.models.froude_krylov.panels._layout
+    w = ship.wave_field
+    amp = w.phasor(ship.t) * np.exp(
+        -1j * w.wavenumber * (ship.eta[0] * np.cos(w.direction) + ship.eta[1] * np.sin(w.direction))
+    )
+    rot = rotation_matrix(*ship.eta[3:])
+    return (
+        lay.body, lay.triangles, lay.tri_last, lay.tri_first, lay.spread, lay.weights,
+        lay.areas, rot, 0.0, 0.0, float(ship.eta[2]), np.ascontiguousarray(w.wavenumber),
+        np.cos(w.direction), np.sin(w.direction), np.ascontiguousarray(amp),
+        ship.hull.rho * ship.hull.g,
+    )  # fmt: skip
+
+
+def _compiled_section(quick: bool, rounds: int) -> dict:
+    """Real-time factors of the compiled stepper (both meshes and precisions), of the
+    reference path on the same meshes, and the cost split of the fast path's step."""
+    warm = 40 if quick else 200  # compilation, start-up, waves ramped up
+    ships = {(m, p): _compiled(m, p) for m in MESHES for p in ("float32", "float64")}
+    refs = {m: _reference_sim(m) for m in MESHES}
+    for s in ships.values():
+        s.advance(warm)
+    for r in refs.values():
+        for _ in range(3 if quick else 6):
+            r.step()
+    n_fast = 20 if quick else 100
+    n_ref = 1 if quick else 3
+    jobs = {f"compiled {p} {m}": (_advancer(s, n_fast), n_fast) for (m, p), s in ships.items()}
+    jobs |= {f"reference {m}": (_stepper(r, n_ref), n_ref) for m, r in refs.items()}
+    times = _timed(jobs, rounds)
+    rtf = {k: {c: DT / v[c] for c in ("wall", "cpu")} for k, v in times.items()}
+
+    # cost split of the fast path's step: every term timed alone in a compiled loop at the
+    # ship's current state (CompiledShip.term_costs); the rest of the step (integrator, stage
+    # copies, the call) is the difference to the step time measured in the same blocks
+    fast = ships[(FAST_MESH, FAST_PRECISION)]
+    two_b = _compiled(FAST_MESH, FAST_PRECISION, radiation="2b")
+    two_b.advance(warm)
+    # the kernel's cost depends on the state (wet vertices, crossing triangles): mean over
+    # states 1 s apart
+    samples = []
+    for _ in range(2 if quick else 6):
+        samples.append(fast.term_costs(repeats=20 if quick else 100, rounds=3 if quick else 5))
+        fast.advance(20)
+    costs = {k: float(np.mean([c[k] for c in samples])) for k in samples[0]}
+    # paired blocks (memory vs 2b back to back), median of the ratios, like _paired_ratio
+    ratios, steps = [], []
+    for _ in range(5 if quick else 15):
+        c0 = time.process_time()
+        fast.advance(n_fast)
+        c1 = time.process_time()
+        two_b.advance(n_fast)
+        c2 = time.process_time()
+        ratios.append((c1 - c0) / (c2 - c1))
+        steps.append((c1 - c0) / n_fast)
+    memory_ratio = float(np.median(ratios))
+    step = min(min(steps), times[f"compiled {FAST_PRECISION} {FAST_MESH}"]["cpu"])
+    split_us = {k: v * 1e6 for k, v in costs.items()}
+    split_us["integrator_and_call"] = step * 1e6 - sum(split_us.values())
+    # (≈ 1 µs; it comes out negative when the block of steps hit cheaper states than the
+    # kernel samples, or the machine load changed between the two measurements)
+    return {
+        "times": times,
+        "rtf": rtf,
+        "step_us_cpu": step * 1e6,
+        "split_us_cpu": split_us,
+        "memory_cost_ratio": memory_ratio,
+        "n_faces": {m: int(ships[(m, "float64")].hull.mesh.faces.shape[0]) for m in MESHES},
+        "n_states": fast.n_states,
+    }
+
+
+def _reference_sim(mesh: str) -> Simulator:
+    setup = ShipSetup(
+        radiation="convolution",
+        fk_method="reference",
+        integrator="holloway",
+        hull_overrides=dict(MESHES[mesh]),
+    )
+    sim = build_simulator(setup, SEA, wave_heading=HEADING, rng=np.random.default_rng(0))
+    sim.reset(eta=sim.eta.copy(), t0=T_FULL_SEA)
+    return sim
+
+
+def _decay_periods(ship: CompiledShip, dof: int, offset: float, duration: float) -> float:
+    """Natural period [s] of a free decay in calm water: mean spacing of the upward zero
+    crossings of the DOF's deviation from equilibrium (linear interpolation)."""
+    eta = ship.initial_eta.copy()
+    eta[dof] += offset
+    ship.reset(eta=eta)
+    rec = ship.run(round(duration / ship.dt))
+    x = rec["eta"][:, dof] - ship.initial_eta[dof]
+    t = rec["t"]
+    up = np.flatnonzero((x[:-1] < 0.0) & (x[1:] >= 0.0))
+    crossings = t[up] + (t[up + 1] - t[up]) * (-x[up] / (x[up + 1] - x[up]))
+    return float(np.mean(np.diff(crossings))) if crossings.size > 1 else float("nan")
+
+
+def _mesh_accuracy(quick: bool) -> dict:
+    """GZ curve and heave/roll/pitch natural periods on the meshes, against a fine mesh."""
+    meshes = {
+        **MESHES,
+        "9600": {"n_sections": 120, "n_below": 24, "n_above": 12, "n_deck": 8},
+    }
+    heels = np.array([5.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0])
+    out: dict[str, dict] = {}
+    for name, kw in meshes.items():
+        hull = load_hull("s175", **kw)
+        gz = righting_arm(hull, heels).gz
+        setup = ShipSetup(integrator="holloway", hull_overrides=dict(kw))
+        ship = build_compiled_ship(setup, None, precision="float64")
+        duration = 60.0 if quick else 120.0
+        periods = {
+            "heave": _decay_periods(ship, 2, 0.3, duration / 2),
+            "roll": _decay_periods(ship, 3, np.radians(5.0), duration),
+            "pitch": _decay_periods(ship, 4, np.radians(0.5), duration / 2),
+        }
+        out[name] = {
+            "faces": int(hull.mesh.faces.shape[0]),
+            "gz_m": gz.tolist(),
+            "periods_s": periods,
+        }
+    fine = out["9600"]
+    for v in out.values():
+        v["gz_max_abs_diff_vs_9600_m"] = float(
+            np.max(np.abs(np.array(v["gz_m"]) - np.array(fine["gz_m"])))
+        )
+        v["period_rel_diff_vs_9600"] = {
+            k: v["periods_s"][k] / fine["periods_s"][k] - 1.0 for k in v["periods_s"]
+        }
+    out["heels_deg"] = heels.tolist()  # type: ignore[assignment]
+    return out
+
+
 def _print_split(label: str, s: dict) -> None:
     parts = ", ".join(
         f"{k} {s['per_evaluation_us'][k]:.0f} µs ({s['percent_of_step'][k]:.1f} %)"
@@ -254,9 +459,19 @@ def _accuracy(duration: float) -> dict[str, dict[str, float]]:
     return out
 
 
-def _batch(n_ships: int, integrator: str) -> BatchSimulator:
+def _batch(n_ships: int, integrator: str, fast_mesh: bool = False) -> BatchSimulator:
+    """BatchSimulator of the Simulator fast path, or (``fast_mesh``) with the compiled fast
+    path's mesh and float32 wave sums."""
     fields = [wave_field_for(SEA, HEADING, np.random.default_rng(seed)) for seed in range(n_ships)]
-    return build_batch_simulator(_setup("fast", integrator), fields)
+    setup = _setup("fast", integrator)
+    if fast_mesh:
+        setup = ShipSetup(
+            radiation="state_space",
+            fk_method="fast32" if FAST_PRECISION == "float32" else "fast",  # type: ignore[arg-type]
+            integrator=integrator,  # type: ignore[arg-type]
+            hull_overrides=dict(MESHES[FAST_MESH]),
+        )
+    return build_batch_simulator(setup, fields)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -271,6 +486,71 @@ def main(argv: list[str] | None = None) -> int:
     when = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
     load0 = os.getloadavg()
 
+    # ------------------------------------------------------------- compiled fast path
+    comp = _compiled_section(quick, rounds)
+    fast_key = f"compiled {FAST_PRECISION} {FAST_MESH}"
+    ref_key = f"reference {FAST_MESH}"
+    print(
+        "S175-full: S175 to the deck; JONSWAP Hs 5 m Tp 11 s, 50 components, head seas, U = 0; "
+        f"dt = {DT:.3f} s; radiation memory on ({comp['n_states']} states), diffraction, Ikeda "
+        "roll damping"
+    )
+    print(
+        f"measured {when}, numba {numba.__version__}, 1 thread, load average {load0[0]:.2f} "
+        f"({os.cpu_count()} cores shared with other work: CPU time is the steadier figure)"
+    )
+    print()
+    print("real-time factor, single ship, one core (fastest block of each; wall / CPU time)")
+    for name, r in comp["rtf"].items():
+        mesh = name.split()[-1]
+        t_us = comp["times"][name]["cpu"] * 1e6
+        print(
+            f"  {name:24s} {comp['n_faces'][mesh]:5d} faces: {r['wall']:8.1f}× wall, "
+            f"{r['cpu']:8.1f}× CPU  ({t_us:8.1f} µs CPU / step)"
+        )
+    speed_up = {c: comp["rtf"][fast_key][c] / comp["rtf"][ref_key][c] for c in ("wall", "cpu")}
+    print(
+        f"  fast path = CompiledShip (Holloway, {FAST_PRECISION} wave sums, {FAST_MESH} faces); "
+        f"reference path = Simulator (Holloway, convolution memory, numpy Froude–Krylov) on the "
+        f"same mesh: speed-up {speed_up['wall']:.0f}× wall, {speed_up['cpu']:.0f}× CPU"
+    )
+    goal_us = DT / 1000.0 * 1e6
+    print(
+        f"  goal ≥ 1000× real time = ≤ {goal_us:.0f} µs per step; fast path "
+        f"{comp['step_us_cpu']:.1f} µs CPU per step"
+    )
+    print()
+    print("cost split of the fast path's step (µs CPU; one evaluation per step)")
+    for k, v in comp["split_us_cpu"].items():
+        print(f"  {k:28s} {v:7.1f} µs  ({100 * v / comp['step_us_cpu']:5.1f} %)")
+    print(
+        "  (each term timed alone in a compiled loop at the ship's state; integrator_and_call = "
+        "step − Σ terms)"
+    )
+    print(
+        f"  memory term vs constant coefficients (case 2b): step time ratio "
+        f"{comp['memory_cost_ratio']:.3f} (median of back-to-back block pairs, CPU time)"
+    )
+
+    # ------------------------------------------------------------- mesh resolution accuracy
+    mesh_acc = _mesh_accuracy(quick)
+    print()
+    print("mesh resolution: GZ [m] and natural periods [s] (free decays, calm water) vs 9600 faces")
+    print("  heel [deg]          " + " ".join(f"{h:6.0f}" for h in mesh_acc["heels_deg"]))
+    for name, v in mesh_acc.items():
+        if name == "heels_deg":
+            continue
+        per = v["periods_s"]
+        rel = v["period_rel_diff_vs_9600"]
+        print(
+            f"  {v['faces']:5d} faces GZ      " + " ".join(f"{g:6.3f}" for g in v["gz_m"])
+            + f"   max |ΔGZ| {1000 * v['gz_max_abs_diff_vs_9600_m']:.1f} mm"
+        )  # fmt: skip
+        print(
+            "              periods "
+            + ", ".join(f"{k} {per[k]:.2f} s ({100 * rel[k]:+.2f} %)" for k in per)
+        )
+
     # ------------------------------------------------------------- single ship, both paths
     paths = ("fast", "reference", "2b")
     sims = {(path, integ): _sim(path, integ) for path in paths for integ in INTEGRATORS}
@@ -279,7 +559,6 @@ def main(argv: list[str] | None = None) -> int:
             sim.step()
     fk = sims[("fast", "rk4")].forces[0]
     n_faces = int(fk.hull.mesh.faces.shape[0])
-    n_states = int(sims[("fast", "rk4")].n_states)
     # blocks of similar wall time (≈ 0.1 s), so that each variant has the same chance of an
     # undisturbed block
     block = {
@@ -298,13 +577,11 @@ def main(argv: list[str] | None = None) -> int:
     step = {**step_rk4, **step_hol}
     rtf = {integ: {p: DT / step[f"{p}/{integ}"] for p in block} for integ in INTEGRATORS}
 
-    print(
-        f"S175-full: S175 to the deck, {n_faces} faces; JONSWAP Hs 5 m Tp 11 s, 50 components, "
-        f"head seas, U = 0; dt = {DT:.3f} s; {n_states} radiation states (fast path)"
-    )
-    print(f"measured {when}, numba {numba.__version__}, 1 thread, load average {load0[0]:.2f}")
     print()
-    print("real-time factor (single ship, single thread)")
+    print(
+        f"Simulator paths (Python-level stepping), default mesh {n_faces} faces: real-time "
+        "factor (wall)"
+    )
     print(f"  {'integrator':10s} {'fast':>9s} {'reference':>10s} {'speed-up':>9s} {'2b':>9s}")
     for integ in INTEGRATORS:
         r = rtf[integ]
@@ -407,6 +684,43 @@ def main(argv: list[str] | None = None) -> int:
         / throughput["rk4"][f"{n_single}x single"]
     )
     print(f"  batch of {n_single} vs {n_single} single simulators (rk4): {ratio:.2f}×")
+    # the fast path's settings (Holloway, float32 wave sums, 1500 faces): BatchSimulator with
+    # N ships, and N CompiledShips stepped one after the other (ship-steps / s, wall and CPU)
+    jobs = {}
+    for n_ships in sizes:
+        b = _batch(n_ships, "holloway", fast_mesh=True)
+        for _ in range(3):
+            b.step()
+        steps = max(1, 64 // n_ships)
+        steps = max(1, steps // 4) if quick else steps
+        jobs[f"batch {n_ships}"] = (_stepper(b, steps), steps * n_ships)
+    compiled_ships = [_compiled(FAST_MESH, FAST_PRECISION) for _ in range(sizes[-1])]
+    for c in compiled_ships:
+        c.advance(3)
+    for n_ships in sizes:
+        per_ship = max(1, 64 // n_ships)
+
+        def all_compiled(ships=compiled_ships[:n_ships], n=per_ship) -> None:
+            for c in ships:
+                c.advance(n)
+
+        jobs[f"compiled {n_ships}"] = (all_compiled, n_ships * per_ship)
+    fast_tp = _timed(jobs, rounds)
+    batched_fast = {
+        kind: {str(n): {c: 1.0 / fast_tp[f"{kind} {n}"][c] for c in ("wall", "cpu")} for n in sizes}
+        for kind in ("batch", "compiled")
+    }
+    print(
+        f"  fast-path settings (holloway, {FAST_PRECISION}, {FAST_MESH} faces), ship-steps / s "
+        "wall (CPU):"
+    )
+    for kind, label in (("batch", "BatchSimulator(N)"), ("compiled", "N × CompiledShip")):
+        print(
+            f"    {label:18s} "
+            + ", ".join(
+                f"{n}: {v['wall']:7.0f} ({v['cpu']:7.0f})" for n, v in batched_fast[kind].items()
+            )
+        )
 
     elapsed = time.perf_counter() - t_start
     load1 = os.getloadavg()
@@ -420,15 +734,33 @@ def main(argv: list[str] | None = None) -> int:
             "quick": quick,
             "threads": 1,
             "load_average": [load0[0], load1[0]],
-            "n_faces": n_faces,
-            "n_radiation_states": n_states,
             "dt": DT,
-            "default_integrator": DEFAULT_INTEGRATOR,
-            "realtime_factor_fast": rtf[DEFAULT_INTEGRATOR]["fast"],
-            "realtime_factor_reference": rtf[DEFAULT_INTEGRATOR]["reference"],
-            "speedup": rtf[DEFAULT_INTEGRATOR]["fast"] / rtf[DEFAULT_INTEGRATOR]["reference"],
-            "memory_cost_ratio": memory_ratio[DEFAULT_INTEGRATOR],
-            "batched_ship_steps_per_s": {k: v for k, v in batched.items() if "single" not in k},
+            # headline: the compiled fast path vs the reference path on the same mesh, CPU time
+            "fast_path": (
+                f"CompiledShip, holloway, {FAST_PRECISION} wave sums, {FAST_MESH}-face mesh"
+            ),
+            "reference_path": "Simulator, holloway, convolution memory, numpy Froude-Krylov",
+            "n_faces": comp["n_faces"][FAST_MESH],
+            "n_radiation_states": comp["n_states"],
+            "realtime_factor_fast": comp["rtf"][fast_key]["cpu"],
+            "realtime_factor_reference": comp["rtf"][ref_key]["cpu"],
+            "speedup": speed_up["cpu"],
+            "memory_cost_ratio": comp["memory_cost_ratio"],
+            "batched_ship_steps_per_s": {n: v["cpu"] for n, v in batched_fast["batch"].items()},
+            "realtime_factor_fast_wall": comp["rtf"][fast_key]["wall"],
+            "realtime_factor_reference_wall": comp["rtf"][ref_key]["wall"],
+            "speedup_wall": speed_up["wall"],
+            "step_us_cpu_fast": comp["step_us_cpu"],
+            "cost_split_fast_us_cpu": comp["split_us_cpu"],
+            "compiled_realtime_factors": comp["rtf"],
+            "compiled_times_s": comp["times"],
+            "batched_fast_path": batched_fast,
+            "mesh_accuracy": mesh_acc,
+            "simulator_default_integrator": DEFAULT_INTEGRATOR,
+            "simulator_n_faces": n_faces,
+            "simulator_batched_ship_steps_per_s": {
+                k: v for k, v in batched.items() if "single" not in k
+            },
             "single_simulators_ship_steps_per_s": {
                 k.split("x")[0]: v for k, v in batched.items() if "single" in k
             },
@@ -442,7 +774,7 @@ def main(argv: list[str] | None = None) -> int:
             "elapsed_s": elapsed,
         }
         args.json.parent.mkdir(parents=True, exist_ok=True)
-        args.json.write_text(json.dumps(results, indent=2) + "\n")
+        atomic_write_text(args.json, json.dumps(results, indent=2) + "\n")
     return 0
 
 

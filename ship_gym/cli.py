@@ -1,4 +1,4 @@
-"""``ship-gym`` command line: hull particulars and GZ, hydrodynamic databases, kernels.
+"""``ship-gym`` command line: hulls, databases, simulation, manoeuvres, capsize studies, RL.
 
 Heavy modules (scipy solvers, capytaine, matplotlib) are imported inside the subcommands so that
 ``ship-gym --help`` stays instant.
@@ -147,11 +147,26 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _add_hydro_commands(sub: argparse._SubParsersAction) -> None:
-    from ship_gym import cli_hydro, cli_manoeuvre, cli_simulate
+    from ship_gym import (
+        cli_agents,
+        cli_capsize,
+        cli_hydro,
+        cli_identify,
+        cli_manoeuvre,
+        cli_roll,
+        cli_simulate,
+    )
 
-    cli_hydro.add_commands(sub)
-    cli_simulate.add_commands(sub)
-    cli_manoeuvre.add_commands(sub)
+    for module in (
+        cli_hydro,
+        cli_simulate,
+        cli_manoeuvre,
+        cli_capsize,
+        cli_roll,
+        cli_identify,
+        cli_agents,
+    ):
+        module.add_commands(sub)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

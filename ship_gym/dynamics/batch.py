@@ -311,8 +311,9 @@ class BatchFroudeKrylov(BatchForceModel):
         Shared hull geometry.
     rho, g : float
         Water density [kg/m³] and gravity [m/s²].
-    method : {"fast", "reference"}
+    method : {"fast", "fast32", "reference"}
         ``"fast"``: :func:`froude_krylov_hydrostatic_batch` (one call per evaluation);
+        ``"fast32"``: the same with the wave sums in float32 (``single_precision=True``);
         ``"reference"``: the numpy reference, looped over ships (for checks only).
     parallel : bool
         Ask the batched kernel for its numba-threaded variant (ships over threads; threads as
@@ -330,8 +331,8 @@ class BatchFroudeKrylov(BatchForceModel):
         method: str = "fast",
         parallel: bool = False,
     ) -> None:
-        if method not in ("fast", "reference"):
-            raise ValueError(f"method must be 'fast' or 'reference', got {method!r}")
+        if method not in ("fast", "fast32", "reference"):
+            raise ValueError(f"method must be 'fast', 'fast32' or 'reference', got {method!r}")
         self.parallel = bool(parallel)
         self.panels = panels
         self.rho = float(rho)
@@ -346,8 +347,10 @@ class BatchFroudeKrylov(BatchForceModel):
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
         w = ctx.waves
         amp = ctx.local_phasor  # WaveComponents.local_amplitudes, all ships at once
-        if self.method == "fast":
+        if self.method in ("fast", "fast32"):
             extra = {"parallel": True} if self.parallel else {}
+            if self.method == "fast32":
+                extra["single_precision"] = True
             f = froude_krylov_hydrostatic_batch(
                 self.panels,
                 w.wavenumber,
@@ -677,10 +680,15 @@ def batch_force_models(models: Sequence[ForceModel]) -> list[BatchForceModel]:
     """Batch versions of one ship's force models (as built by ``build_force_models``).
 
     Froude–Krylov, state-space radiation memory, constant-coefficient radiation, diffraction and
-    viscous roll damping are converted (their sea-independent data reused); a
-    :class:`BatchForceModel` is passed through. Anything else raises ``NotImplementedError``
+    viscous roll damping are converted (their sea-independent data reused), and so are the
+    control models with a vectorised version in :mod:`ship_gym.dynamics.batch_control`
+    (resistance, propeller, hull manoeuvring, rudder / fins / T-foil / flaps behind their
+    servos, with the heading autopilot, fin or ride controller); a :class:`BatchForceModel` is
+    passed through. Anything else (added resistance in waves) raises ``NotImplementedError``
     (wrap one instance per ship in :class:`PerShipForceModel`).
     """
+    from ship_gym.dynamics.batch_control import batch_control_model  # imports this module
+
     out: list[BatchForceModel] = []
     for m in models:
         if isinstance(m, BatchForceModel):
@@ -696,10 +704,13 @@ def batch_force_models(models: Sequence[ForceModel]) -> list[BatchForceModel]:
         elif isinstance(m, ViscousRollDamping):
             out.append(BatchViscousRoll.from_model(m))
         else:
-            raise NotImplementedError(
-                f"no batch version of force model {type(m).__name__!r} ({m.name!r}); wrap one "
-                "instance per ship in PerShipForceModel"
-            )
+            try:
+                out.append(batch_control_model(m))
+            except NotImplementedError:
+                raise NotImplementedError(
+                    f"no batch version of force model {type(m).__name__!r} ({m.name!r}); wrap "
+                    "one instance per ship in PerShipForceModel"
+                ) from None
     return out
 
 
@@ -709,6 +720,9 @@ def batch_force_models(models: Sequence[ForceModel]) -> list[BatchForceModel]:
 @nb.njit(cache=True)
 def _ship_terms(eta, nu, mass, weight, cog, rot, total, qdot):  # pragma: no cover - compiled
     """Per ship: rotation R(φ, θ, ψ), gravity − Coriolis (body axes, about O) and η̇ = J(η) ν.
+
+    ``mass`` (n, 6, 6) M_RB about O and ``cog`` (n, 3) G of each row (per-ship loading,
+    :meth:`BatchSimulator.set_centre_of_gravity`); ``weight`` m g [N] shared.
 
     The arithmetic of :func:`ship_gym.kinematics.rotation_matrix`,
     :func:`ship_gym.dynamics.rigid_body.gravity_force`, ``coriolis_force`` and ``kinematics``
@@ -736,15 +750,16 @@ def _ship_terms(eta, nu, mass, weight, cog, rot, total, qdot):  # pragma: no cov
         for i in range(6):
             acc = 0.0
             for j in range(6):
-                acc += mass[i, j] * nu[s, j]
+                acc += mass[s, i, j] * nu[s, j]
             h[i] = acc
         u, v, w, p, q, rr = nu[s, 0], nu[s, 1], nu[s, 2], nu[s, 3], nu[s, 4], nu[s, 5]
         total[s, 0] = fx - (q * h[2] - rr * h[1])
         total[s, 1] = fy - (rr * h[0] - p * h[2])
         total[s, 2] = fz - (p * h[1] - q * h[0])
-        total[s, 3] = (cog[1] * fz - cog[2] * fy) - ((v * h[2] - w * h[1]) + (q * h[5] - rr * h[4]))
-        total[s, 4] = (cog[2] * fx - cog[0] * fz) - ((w * h[0] - u * h[2]) + (rr * h[3] - p * h[5]))
-        total[s, 5] = (cog[0] * fy - cog[1] * fx) - ((u * h[1] - v * h[0]) + (p * h[4] - q * h[3]))
+        xg, yg, zg = cog[s, 0], cog[s, 1], cog[s, 2]
+        total[s, 3] = (yg * fz - zg * fy) - ((v * h[2] - w * h[1]) + (q * h[5] - rr * h[4]))
+        total[s, 4] = (zg * fx - xg * fz) - ((w * h[0] - u * h[2]) + (rr * h[3] - p * h[5]))
+        total[s, 5] = (xg * fy - yg * fx) - ((u * h[1] - v * h[0]) + (p * h[4] - q * h[3]))
         # kinematics: R ν₁ and T(φ, θ) ν₂
         for i in range(3):
             qdot[s, i] = r[i, 0] * u + r[i, 1] * v + r[i, 2] * w
@@ -990,6 +1005,12 @@ class BatchSimulator:
         self._held_angles = ~self.free[3:]
         self._weight = float(hull.mass.mass * hull.g)
         self._cog = np.asarray(hull.mass.cog, float)
+        # per-ship loading (set_centre_of_gravity): G, M_RB about O and the inverse of the free
+        # block of M_RB + A_lhs, one row per ship; all the hull's until a ship's G is moved
+        self._ship_cog = np.tile(self._cog, (self.n_ships, 1))
+        self._ship_mass_rb = np.tile(self.mass_rb, (self.n_ships, 1, 1))
+        self._ship_m_inv_t = np.tile(self._m_free_inv_t, (self.n_ships, 1, 1))
+        self._uniform_loading = True
         sizes = [int(f.n_states) for f in self.forces]
         bounds = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
         self._slices = [slice(bounds[i], bounds[i + 1]) for i in range(len(self.forces))]
@@ -1085,7 +1106,11 @@ class BatchSimulator:
         rot = np.empty((n, 3, 3))
         rigid = np.empty((n, 6))
         qdot = np.empty((n, 6))
-        _ship_terms(eta, nu, self.mass_rb, self._weight, self._cog, rot, rigid, qdot)
+        if all_ships:
+            mass_rb, cog = self._ship_mass_rb, self._ship_cog
+        else:
+            mass_rb, cog = self._ship_mass_rb[ships], self._ship_cog[ships]
+        _ship_terms(eta, nu, mass_rb, self._weight, cog, rot, rigid, qdot)
         qdot[:, 3:][:, self._held_angles] = 0.0  # a held rotation holds its Euler angle
         seas = self._seas
         if all_ships:
@@ -1181,6 +1206,83 @@ class BatchSimulator:
         for f in self.forces:
             f.reset(ships, ctx)
 
+    # ------------------------------------------------------------------ per-ship loading
+    def set_centre_of_gravity(self, indices: ArrayLike | None, cog: ArrayLike) -> None:
+        """Move the centre of gravity G of ships ``indices`` (their loading condition).
+
+        The mass and the inertia tensor about G stay the hull's; M_RB about O (Fossen 2011,
+        eq. 3.44), the gravity moment and the inverse of M_RB + A_lhs of those ships follow G.
+        The nonlinear Froude–Krylov + hydrostatic force integrates the pressure on the hull
+        panels and does not depend on G, so the restoring moment — GZ and GM — is consistent
+        with the new G by construction. Force models tuned on the hull's loading (viscous roll
+        damping at the roll natural frequency, controller gains) keep their values. Persistent
+        across :meth:`reset`.
+
+        Parameters
+        ----------
+        indices : array_like of int or bool mask, optional
+            Ships to change (None: all).
+        cog : array_like
+            (3,) or (n, 3) G in the body frame [m] (z down from the design waterline: a
+            higher G has a more negative z_G).
+        """
+        ships = self._as_ships(indices)
+        n = ships.size
+        if n == 0:
+            return
+        g = np.asarray(cog, float)
+        if g.shape == (3,):
+            g = np.tile(g, (n, 1))
+        if g.shape != (n, 3) or not np.all(np.isfinite(g)):
+            raise ValueError(f"cog must be finite with shape (3,) or ({n}, 3) [m], got {cog!r}")
+        from ship_gym.hull.mass import MassProperties
+
+        mass = self.hull.mass
+        idx = self._free_idx
+        for s, gs in zip(ships, g, strict=True):
+            m_rb = MassProperties(mass.mass, gs, mass.inertia).rigid_body_matrix()
+            self._ship_cog[s] = gs
+            self._ship_mass_rb[s] = m_rb
+            lhs = (m_rb + self.added_mass_lhs)[np.ix_(idx, idx)]
+            self._ship_m_inv_t[s] = np.linalg.inv(lhs).T
+        self._uniform_loading = bool(np.all(self._ship_cog == self._cog))
+
+    @property
+    def centre_of_gravity(self) -> NDArray:
+        """(N, 3) centre of gravity of each ship in the body frame [m] (a copy)."""
+        return self._ship_cog.copy()
+
+    def elevation(self, x: ArrayLike, y: ArrayLike) -> NDArray:
+        """Incident-wave elevation [m, positive up] at earth points, each ship in its own sea.
+
+        ζₛ(X, Y) = rₛ(tₛ) Σⱼ aₛⱼ cos(ωₛⱼ tₛ + εₛⱼ − kₛⱼ (X cos χₛⱼ + Y sin χₛⱼ)) at each ship's
+        own time tₛ, ramp rₛ included (:mod:`ship_gym.waves.wave_field`).
+
+        Parameters
+        ----------
+        x, y : array_like
+            (N, P) north and east coordinates [m] (row s: points in ship s's sea).
+
+        Returns
+        -------
+        numpy.ndarray
+            (N, P) elevations [m].
+        """
+        from ship_gym.waves.wave_field import ramp_factor
+
+        xx = np.asarray(x, float)
+        yy = np.asarray(y, float)
+        if xx.ndim != 2 or xx.shape != yy.shape or xx.shape[0] != self.n_ships:
+            raise ValueError(
+                f"x and y must both have shape ({self.n_ships}, P), got {xx.shape} and {yy.shape}"
+            )
+        seas = self._seas
+        r = ramp_factor(self.t, seas.ramp_time)
+        arg = (seas.omega * self.t[:, None] + seas.phase)[:, None, :] - (
+            seas.kx[:, None, :] * xx[:, :, None] + seas.ky[:, None, :] * yy[:, :, None]
+        )
+        return r[:, None] * np.einsum("nc,npc->np", seas.amplitude, np.cos(arg))
+
     # ------------------------------------------------------------------ right-hand side
     def _generalised_force(
         self, ctx: BatchContext, rigid: NDArray, z: NDArray, breakdown: dict | None = None
@@ -1203,11 +1305,20 @@ class BatchSimulator:
         self.n_evaluations += 1
         return total, zdot
 
-    def _acceleration(self, total: NDArray) -> NDArray:
+    def _acceleration(
+        self, total: NDArray, ships: NDArray[np.int64] | None = None, all_ships: bool = True
+    ) -> NDArray:
+        if self._uniform_loading:
+            if self._all_free:
+                return total @ self._m_free_inv_t
+            acc = np.zeros_like(total)
+            acc[:, self._free_idx] = total[:, self._free_idx] @ self._m_free_inv_t
+            return acc
+        inv_t = self._ship_m_inv_t if all_ships or ships is None else self._ship_m_inv_t[ships]
         if self._all_free:
-            return total @ self._m_free_inv_t
+            return np.einsum("ni,nij->nj", total, inv_t)
         acc = np.zeros_like(total)
-        acc[:, self._free_idx] = total[:, self._free_idx] @ self._m_free_inv_t
+        acc[:, self._free_idx] = np.einsum("ni,nij->nj", total[:, self._free_idx], inv_t)
         return acc
 
     def _rhs(
@@ -1217,7 +1328,7 @@ class BatchSimulator:
         """(acceleration, zdot, q̇) of the rows."""
         ctx, rigid, qdot = self._context(ships, all_ships, t, q, v)
         total, zdot = self._generalised_force(ctx, rigid, z)
-        return self._acceleration(total), zdot, qdot
+        return self._acceleration(total, ships, all_ships), zdot, qdot
 
     # ------------------------------------------------------------------ integrators
     def _rk4(
@@ -1396,6 +1507,7 @@ def build_batch_simulator(
     wave_heading: float = np.pi,
     max_components: int | None = None,
     extra_forces: Sequence[BatchForceModel] = (),
+    control: Literal["batch", "per_ship"] = "batch",
 ) -> BatchSimulator:
     """A batch of ships of one setup at the free-floating equilibrium, heading north.
 
@@ -1418,12 +1530,24 @@ def build_batch_simulator(
         Padded component count (room for larger seas at reset).
     extra_forces : sequence of BatchForceModel
         Added after the setup's models (e.g. actuators, :class:`PerShipForceModel`).
+    control : {"batch", "per_ship"}
+        ``"batch"`` (default): the setup's control models (propulsion, manoeuvring, rudder,
+        fins, T-foil, with their servos and controllers) by their vectorised versions
+        (:mod:`ship_gym.dynamics.batch_control`); ``"per_ship"``: each copied once per ship and
+        wrapped in a :class:`PerShipForceModel` (a Python loop over ships; the reference the
+        vectorised versions are tested against). Models without a batch version (added
+        resistance in waves) are per ship in both cases.
 
-    The setup's control models (propulsion, manoeuvring, rudder, fins, T-foil) have no batch
-    version yet: each is copied once per ship and wrapped in a :class:`PerShipForceModel`
-    (Python loop over ships); the initial commands (e.g. the self-propulsion shaft speed) are
-    broadcast to (N,) arrays in :attr:`BatchSimulator.commands`.
+    The initial commands are broadcast to (N,) arrays in :attr:`BatchSimulator.commands`. With
+    propulsion at a positive speed, each ship's shaft speed is trimmed on its assembled surge
+    balance at its initial state, as :func:`ship_gym.dynamics.ship.build_simulator` does
+    (:func:`ship_gym.dynamics.batch_control.trim_batch_shaft_speed`).
     """
+    from ship_gym.dynamics.batch_control import trim_batch_shaft_speed  # imports this module
+    from ship_gym.forces.propeller import Propeller
+
+    if control not in ("batch", "per_ship"):
+        raise ValueError(f"control must be 'batch' or 'per_ship', got {control!r}")
     if setup.integrator not in ("rk4", "holloway"):
         raise NotImplementedError(
             f"BatchSimulator implements 'rk4' and 'holloway', not {setup.integrator!r}"
@@ -1445,18 +1569,26 @@ def build_batch_simulator(
     models, commands = built if isinstance(built, tuple) else (built, {})
     n_ships = len(fields)
     batch_models: list[BatchForceModel] = []
+    wave_models = (
+        FroudeKrylovHydrostatics, RadiationMemory, ConstantCoefficientRadiation, Diffraction,
+        ViscousRollDamping,
+    )  # fmt: skip
     for m in models:
-        try:
-            batch_models += batch_force_models([m])
-        except NotImplementedError:
-            if isinstance(m, RadiationMemory | FroudeKrylovHydrostatics | Diffraction):
-                raise
-            # control models (propeller, rudder, fins…): one independent copy per ship
+        vectorised: list[BatchForceModel] | None = None
+        if control == "batch" or isinstance(m, wave_models):
+            try:
+                vectorised = batch_force_models([m])
+            except NotImplementedError:
+                if isinstance(m, RadiationMemory | FroudeKrylovHydrostatics | Diffraction):
+                    raise
+        if vectorised is not None:
+            batch_models += vectorised
+        else:  # control models run per ship: one independent copy per ship
             copies = [m] + [copy.deepcopy(m) for _ in range(n_ships - 1)]
             batch_models.append(PerShipForceModel(copies))
     batch_models += list(extra_forces)
     eq = equilibrium(hull)
-    return BatchSimulator(
+    batch = BatchSimulator(
         hull,
         batch_models,
         fields,
@@ -1468,3 +1600,7 @@ def build_batch_simulator(
         max_components=max_components,
         commands={k: np.full(n_ships, v) if np.ndim(v) == 0 else v for k, v in commands.items()},
     )
+    if setup.propulsion and setup.speed > 0.0:
+        propeller = next(m for m in models if isinstance(m, Propeller))
+        trim_batch_shaft_speed(batch, propeller, setup.speed)
+    return batch

@@ -48,7 +48,7 @@ from ship_gym.forces.radiation import ConstantCoefficientRadiation, RadiationMem
 from ship_gym.forces.resistance import CalmWaterResistance
 from ship_gym.forces.rudder import Rudder
 from ship_gym.forces.viscous import BilgeKeel, ViscousRollDamping
-from ship_gym.hull import equilibrium, load_hull
+from ship_gym.hull import equilibrium, hydrostatics, load_hull
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
 from ship_gym.hydro.rao import natural_frequency
@@ -198,6 +198,24 @@ def _peak_frequency(sea: Sea) -> float:
     raise ValueError("constant-coefficient radiation (2a/2b) needs a sea state to set ω_e")
 
 
+def roll_natural_frequency(hull: Hull, database: xr.Dataset) -> float:
+    """Uncoupled roll natural frequency ω_φ [rad/s] of this loading condition.
+
+    The database's radiation data do not depend on G, but its stored hydrostatic stiffness is
+    that of the loading condition it was built for; C44 and M44 here are the hull's own (C at
+    its free-floating equilibrium, :func:`ship_gym.hull.hydrostatics`; M_RB about O), so a KG
+    override moves ω_φ (used by the Ikeda damping and Matusiak's case 2a) as it should.
+    """
+    eq = equilibrium(hull)
+    stiffness = hydrostatics(hull, heave=eq.heave, trim=eq.trim).stiffness
+    return natural_frequency(
+        database,
+        "Roll",
+        hull_hydrostatic_stiffness=stiffness,
+        mass_matrix=hull.mass.rigid_body_matrix(),
+    )
+
+
 def build_force_models(
     setup: ShipSetup,
     hull: Hull,
@@ -209,7 +227,7 @@ def build_force_models(
     """The force models of a setup and the initial commands (e.g. the self-propulsion shaft
     speed); see the module docstring for the list."""
     models: list[ForceModel] = [FroudeKrylovHydrostatics(hull, wave_field, method=setup.fk_method)]
-    omega_roll = natural_frequency(database, "Roll")
+    omega_roll = roll_natural_frequency(hull, database)
     if setup.radiation in ("state_space", "convolution"):
         models.append(
             RadiationMemory(database, method=setup.radiation, dt=setup.dt, lumped=setup.lumped)

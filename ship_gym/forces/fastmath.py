@@ -226,3 +226,83 @@ def exp_neg(y: float) -> float:  # pragma: no cover - compiled
     n = np.rint(y * _LOG2E)
     r = (n * _LN2_HI - y) + n * _LN2_LO
     return _pow2_poly(r * _INV_LN2) * _pow2_neg_int(n)
+
+
+# ----------------------------------------------------------------------------- float32 tier
+# Single-precision variants for kernels that can afford ~3e-7 absolute/relative errors (the
+# float32 Froude–Krylov kernel, :mod:`ship_gym.forces.froude_krylov`): twice the SIMD lanes and
+# shorter polynomials. Every constant is a numpy float32 so that numba keeps the arithmetic in
+# single precision (a Python float would promote it to float64).
+_F32 = np.float32
+# cos(π f) = Σ _CF[i] f^{2i}, |f| ≤ 1/2 (Chebyshev fit, truncation 2e-10)
+_CF0, _CF1, _CF2, _CF3, _CF4, _CF5 = (
+    _F32(0.9999999997801801),
+    _F32(-4.934802137096509),
+    _F32(4.058709159854577),
+    _F32(-1.335212004883353),
+    _F32(0.23493731757156133),
+    _F32(-0.024396324610719836),
+)
+# 2^x = Σ _QF[i] x^i, |x| ≤ 1/2 (truncation 4e-11 relative)
+_QF0, _QF1, _QF2, _QF3, _QF4, _QF5, _QF6 = (
+    _F32(0.9999999999595387),
+    _F32(0.6931472067162213),
+    _F32(0.24022651213692603),
+    _F32(0.05550327202259872),
+    _F32(0.009618025590000943),
+    _F32(0.001340043694502858),
+    _F32(0.00015469736118983962),
+)
+_ONE_F32 = _F32(1.0)
+_EXP2_CLAMP_F32 = _F32(126.0)
+# 1.5·2^23: x + _MAGIC_F32 puts round(x) in the low mantissa bits of a float32 (|x| < 2^22)
+_BIAS_MAGIC_F32 = _F32(127.0 + 12582912.0)
+
+
+@intrinsic
+def _f32_bits(typingctx, x):  # pragma: no cover - compiled
+    """Reinterpret a float32 as int32 (a plain LLVM bitcast: vectorises)."""
+
+    def codegen(context, builder, sig, args):
+        return builder.bitcast(args[0], ir.IntType(32))
+
+    return types.int32(types.float32), codegen
+
+
+@intrinsic
+def _bits_f32(typingctx, x):  # pragma: no cover - compiled
+    """Reinterpret an int32 as float32."""
+
+    def codegen(context, builder, sig, args):
+        return builder.bitcast(args[0], ir.FloatType())
+
+    return types.float32(types.int32), codegen
+
+
+@nb.njit(fastmath=_FLAGS, cache=True)
+def cos_turns_f32(t: np.float32, amplitude: np.float32) -> np.float32:  # pragma: no cover
+    """amplitude · cos 2πt in float32, branch-free, |t| < 2**22 turns.
+
+    Absolute error ≲ 3e-7·|amplitude| (float32 rounding; the polynomial's own truncation is
+    2e-10): f = t − rint(t), a degree-10 even polynomial for cos(π f) and one doubling,
+    cos 2πf = 2 cos²(πf) − 1 (9 multiply/FMA operations). Arguments must be float32.
+    """
+    f = t - np.rint(t)
+    w = f * f
+    c = _CF0 + w * (_CF1 + w * (_CF2 + w * (_CF3 + w * (_CF4 + w * _CF5))))
+    return ((amplitude + amplitude) * c) * c - amplitude
+
+
+@nb.njit(fastmath=_FLAGS, cache=True)
+def exp2_neg_f32(y: np.float32) -> np.float32:  # pragma: no cover - compiled
+    """2^−y in float32 for y ≥ −126, branch-free; relative error ≲ 2e-7.
+
+    y above 126 is treated as 126 (2^−126 ≈ 1.2e-38, the smallest normal float32). A degree-6
+    polynomial for 2^x, |x| ≤ 1/2, scaled by 2^−n built from the exponent bits. The argument
+    must be float32.
+    """
+    y = min(y, _EXP2_CLAMP_F32)
+    n = np.rint(y)
+    x = n - y
+    p = _QF0 + x * (_QF1 + x * (_QF2 + x * (_QF3 + x * (_QF4 + x * (_QF5 + x * _QF6)))))
+    return p * _bits_f32(_f32_bits(_BIAS_MAGIC_F32 - n) << 23)

@@ -12,7 +12,7 @@ centroid; the pressure vanishes on the cut. Pressure is taken linear over each (
 which integrates the hydrostatic part exactly; in calm water this is the same integral as
 :func:`ship_gym.hull.hydrostatics.pressure_integral`, so the GZ curve is reproduced.
 
-Two implementations, which the tests hold to 1e-6 relative agreement:
+Three implementations, which the tests hold to 1e-6 (2e-6 for ``fast32``) relative agreement:
 
 * ``method="fast"``: a numba kernel that evaluates the wave once per *vertex* (elevation and
   pressure share the per-component spatial terms), with branch-free polynomial sin/cos/exp that
@@ -23,6 +23,9 @@ Two implementations, which the tests hold to 1e-6 relative agreement:
   (details in the comments of the kernel section; ``scripts/bench_froude_krylov.py``). A
   batched variant evaluates many ships in one call, optionally with numba threads
   (``parallel=True``).
+* ``method="fast32"``: the same kernel with the wave sums (elevation and dynamic pressure) in
+  float32, 8 SIMD lanes instead of 4; force and moment within ~1e-7 of the hydrostatic ones
+  of ``"fast"`` (tested at 2e-6).
 * ``method="reference"``: plain numpy (``np.cos``/``np.exp`` on the vertex × component matrix)
   with :func:`ship_gym.hull.mesh.clip_triangles` and
   :func:`ship_gym.hull.mesh.pressure_resultant`.
@@ -30,6 +33,7 @@ Two implementations, which the tests hold to 1e-6 relative agreement:
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -37,12 +41,13 @@ import numba as nb
 import numpy as np
 
 from ship_gym.forces.base import ForceContext, ForceModel
-from ship_gym.forces.fastmath import cos_turns, exp2_neg
+from ship_gym.forces.fastmath import cos_turns, cos_turns_f32, exp2_neg, exp2_neg_f32
 from ship_gym.hull.hull import Hull
 from ship_gym.hull.mesh import PanelMesh, clip_triangles, pressure_resultant
 from ship_gym.waves.wave_field import WaveField
 
-Method = Literal["fast", "reference"]
+Method = Literal["fast", "fast32", "reference"]
+_METHODS = ("fast", "fast32", "reference")
 
 
 @dataclass(frozen=True, eq=False)
@@ -166,7 +171,12 @@ class WaveComponents:
 #   dry and the last wet vertex are examined for a crossing.
 # * Integration: −∫p n dS and −∫p r × n dS are linear in the vertex pressures, so the fully wet
 #   triangles are summed as −Σᵥ pᵥ wᵥ with per-vertex weights precomputed in the body frame; the
-#   crossing triangles replace their whole-triangle term by their cut part (≈ 15 µs in all).
+#   crossing triangles replace their whole-triangle term by their cut part. A cut piece lies in
+#   its triangle's plane, so its area vector is a known multiple of the triangle's (precomputed,
+#   ``_KernelLayout.areas``): one scalar and one cross product per crossing triangle. With
+#   unsigned vertex indices (no wraparound code) the whole integration of the 1500-face S175
+#   costs ≈ 6 µs, mostly the scan of the candidate triangles (their depth gathers); a
+#   branch-free two-pass scan was not faster.
 # * Work arrays are allocated per call inside the kernel (≈ 1 µs); there is no shared mutable
 #   state, the kernels release the GIL (nogil), and concurrent calls from Python threads are safe.
 # * Threads: the default is serial. ``parallel=True`` in the batch runs a numba prange over ships
@@ -197,6 +207,7 @@ class _KernelLayout:
     tri_first: np.ndarray  # (n_t,) smallest kernel vertex index of each triangle
     spread: np.ndarray  # (6, n_v) min (rows 0-2) and max (3-5) of b_u − b_v over neighbours u
     weights: np.ndarray  # (6, n_v) force/moment per unit vertex pressure, all triangles wet
+    areas: np.ndarray  # (3, n_t) area vector ½ (b − a) × (c − a) of each triangle (a, b, c)
 
     @classmethod
     def build(cls, vertices: np.ndarray, triangles: np.ndarray) -> _KernelLayout:
@@ -226,7 +237,9 @@ class _KernelLayout:
             for q in range(3):
                 np.add.at(weights[q], tri[:, i], area[q] / 3.0)
                 np.add.at(weights[3 + q], tri[:, i], arm[q])
-        return cls(order, body, tri, tri_last, tri_first, spread, weights)
+        return cls(
+            order, body, tri, tri_last, tri_first, spread, weights, np.ascontiguousarray(area)
+        )
 
 
 @nb.njit(fastmath=_FM, cache=True)
@@ -267,43 +280,6 @@ def _decayed_row(
         acc[u] += exp2_neg(k2 * dpos[u]) * spatial[so + u]
 
 
-@nb.njit(fastmath=_FM, cache=True)
-def _triangle(
-    ax: float,
-    ay: float,
-    az: float,
-    bx: float,
-    by: float,
-    bz: float,
-    cx: float,
-    cy: float,
-    cz: float,
-    pa: float,
-    pb: float,
-    pc: float,
-) -> tuple[float, float, float, float, float, float]:  # pragma: no cover - compiled
-    """−∫p n dS and −∫p r × n dS of one triangle with p linear (vertices a, b, c)."""
-    e1x, e1y, e1z = bx - ax, by - ay, bz - az
-    e2x, e2y, e2z = cx - ax, cy - ay, cz - az
-    nx = 0.5 * (e1y * e2z - e1z * e2y)
-    ny = 0.5 * (e1z * e2x - e1x * e2z)
-    nz = 0.5 * (e1x * e2y - e1y * e2x)
-    psum = pa + pb + pc
-    pm = psum * (1.0 / 3.0)
-    # ∫ p r dS / S = (Σ pᵢ rᵢ + Σpᵢ Σrᵢ) / 12
-    qx = (pa * ax + pb * bx + pc * cx + psum * (ax + bx + cx)) * (1.0 / 12.0)
-    qy = (pa * ay + pb * by + pc * cy + psum * (ay + by + cy)) * (1.0 / 12.0)
-    qz = (pa * az + pb * bz + pc * cz + psum * (az + bz + cz)) * (1.0 / 12.0)
-    return (
-        -pm * nx,
-        -pm * ny,
-        -pm * nz,
-        -(qy * nz - qz * ny),
-        -(qz * nx - qx * nz),
-        -(qx * ny - qy * nx),
-    )
-
-
 @nb.njit(fastmath={"contract", "nsz", "reassoc"}, cache=True)
 def _wet_sums(
     weights: np.ndarray, pres: np.ndarray
@@ -328,6 +304,7 @@ def _integrate(
     tri_first: np.ndarray,
     body: np.ndarray,
     weights: np.ndarray,
+    areas: np.ndarray,
     rot: np.ndarray,
     depth: np.ndarray,
     pres: np.ndarray,
@@ -338,6 +315,14 @@ def _integrate(
     Every triangle is first counted as wet (vertex weights, p = 0 at dry vertices); the triangles
     crossing the surface are then corrected: their cut part replaces their whole-triangle term.
     Works in the body frame (cuts are linear, so they commute with the rotation) and rotates once.
+
+    A cut piece of a triangle (a, b, c) lies in its plane, and its area vector is a multiple of
+    the triangle's N = ½ (b − a) × (c − a): with the lone vertex a and the cut points
+    a + s_ab (b − a), a + s_ac (c − a), the corner triangle has s_ab s_ac N, and the other two
+    pieces (1 − s_ab) N and s_ab (1 − s_ac) N. With p linear on a piece, its load is
+    −(S/3 Σpᵢ) n and −q × N_piece, q = (Σ pᵢ rᵢ + Σpᵢ Σrᵢ)/12 (per unit area vector), so
+    the correction of a crossing triangle is −P N and −Q × N for one scalar P and one vector Q:
+    a single cross product per triangle, with N precomputed (``areas``).
     """
     f0, f1, f2, m0, m1, m2 = _wet_sums(weights, pres)
     x, y, z = body[0], body[1], body[2]
@@ -349,58 +334,67 @@ def _integrate(
     last_wet = depth.shape[0] - 1
     while last_wet >= 0 and not depth[last_wet] >= 0.0:
         last_wet -= 1
-    for t in range(np.searchsorted(tri_last, first_dry), tri.shape[0]):
+    third = 1.0 / 3.0
+    twelfth = 1.0 / 12.0
+    for t in range(nb.uint64(np.searchsorted(tri_last, first_dry)), nb.uint64(tri.shape[0])):
         if tri_first[t] > last_wet:
             continue
-        i0, i1, i2 = tri[t, 0], tri[t, 1], tri[t, 2]
+        # (unsigned indices: no negative-index wraparound code)
+        i0, i1, i2 = nb.uint64(tri[t, 0]), nb.uint64(tri[t, 1]), nb.uint64(tri[t, 2])
         w0, w1, w2 = depth[i0] >= 0.0, depth[i1] >= 0.0, depth[i2] >= 0.0
         n_wet = int(w0) + int(w1) + int(w2)
         if n_wet == 0 or n_wet == 3:
             continue
-        # remove the whole-triangle term counted in the vertex weights ...
-        c = _triangle(
-            x[i0], y[i0], z[i0], x[i1], y[i1], z[i1], x[i2], y[i2], z[i2],
-            pres[i0], pres[i1], pres[i2],
-        )  # fmt: skip
-        f0 -= c[0]
-        f1 -= c[1]
-        f2 -= c[2]
-        m0 -= c[3]
-        m1 -= c[4]
-        m2 -= c[5]
-        # ... and add the wet part; rotate so that the "odd" vertex (lone wet or lone dry) is a
+        # rotate (cyclically: N keeps its sign) so that the lone wet or lone dry vertex is a
         if (n_wet == 1 and w0) or (n_wet == 2 and not w0):
             a, b, e = i0, i1, i2
         elif (n_wet == 1 and w1) or (n_wet == 2 and not w1):
             a, b, e = i1, i2, i0
         else:
             a, b, e = i2, i0, i1
+        pa, pb, pe = pres[a], pres[b], pres[e]
+        ax, ay, az = x[a], y[a], z[a]
+        bx, by, bz = x[b], y[b], z[b]
+        ex, ey, ez = x[e], y[e], z[e]
+        # whole-triangle term (already counted in the vertex weights), to be taken off
+        psum = pa + pb + pe
+        p_scale = -psum * third
+        sx, sy, sz = ax + bx + ex, ay + by + ey, az + bz + ez
+        qx = -(pa * ax + pb * bx + pe * ex + psum * sx) * twelfth
+        qy = -(pa * ay + pb * by + pe * ey + psum * sy) * twelfth
+        qz = -(pa * az + pb * bz + pe * ez + psum * sz) * twelfth
         da = depth[a]
         sab = da / (da - depth[b])
         sac = da / (da - depth[e])
-        abx = x[a] + sab * (x[b] - x[a])
-        aby = y[a] + sab * (y[b] - y[a])
-        abz = z[a] + sab * (z[b] - z[a])
-        acx = x[a] + sac * (x[e] - x[a])
-        acy = y[a] + sac * (y[e] - y[a])
-        acz = z[a] + sac * (z[e] - z[a])
+        abx, aby, abz = ax + sab * (bx - ax), ay + sab * (by - ay), az + sab * (bz - az)
+        acx, acy, acz = ax + sac * (ex - ax), ay + sac * (ey - ay), az + sac * (ez - az)
         if n_wet == 1:
-            c = _triangle(x[a], y[a], z[a], abx, aby, abz, acx, acy, acz, pres[a], 0.0, 0.0)
+            # corner (a, ab, ac), p = (pa, 0, 0), area vector s_ab s_ac N
+            c1 = sab * sac
+            p_scale += c1 * pa * third
+            g = c1 * pa * twelfth
+            qx += g * (ax + ax + abx + acx)
+            qy += g * (ay + ay + aby + acy)
+            qz += g * (az + az + abz + acz)
         else:
-            c = _triangle(abx, aby, abz, x[b], y[b], z[b], x[e], y[e], z[e], 0.0, pres[b], pres[e])
-            f0 += c[0]
-            f1 += c[1]
-            f2 += c[2]
-            m0 += c[3]
-            m1 += c[4]
-            m2 += c[5]
-            c = _triangle(abx, aby, abz, x[e], y[e], z[e], acx, acy, acz, 0.0, pres[e], 0.0)
-        f0 += c[0]
-        f1 += c[1]
-        f2 += c[2]
-        m0 += c[3]
-        m1 += c[4]
-        m2 += c[5]
+            # (ab, b, e), p = (0, pb, pe), area vector (1 − s_ab) N, and
+            # (ab, e, ac), p = (0, pe, 0), area vector s_ab (1 − s_ac) N
+            c1 = 1.0 - sab
+            c2 = sab * (1.0 - sac)
+            p1 = pb + pe
+            p_scale += (c1 * p1 + c2 * pe) * third
+            g1 = c1 * twelfth
+            g2 = c2 * pe * twelfth
+            qx += g1 * (pb * bx + pe * ex + p1 * (abx + bx + ex)) + g2 * (ex + abx + ex + acx)
+            qy += g1 * (pb * by + pe * ey + p1 * (aby + by + ey)) + g2 * (ey + aby + ey + acy)
+            qz += g1 * (pb * bz + pe * ez + p1 * (abz + bz + ez)) + g2 * (ez + abz + ez + acz)
+        nx, ny, nz = areas[0, t], areas[1, t], areas[2, t]
+        f0 -= p_scale * nx
+        f1 -= p_scale * ny
+        f2 -= p_scale * nz
+        m0 -= qy * nz - qz * ny
+        m1 -= qz * nx - qx * nz
+        m2 -= qx * ny - qy * nx
     f = (f0, f1, f2, m0, m1, m2)
     for q in range(3):
         out[q] += rot[q, 0] * f[0] + rot[q, 1] * f[1] + rot[q, 2] * f[2]
@@ -415,6 +409,7 @@ def _fk_one_ship(
     tri_first: np.ndarray,
     spread: np.ndarray,
     weights: np.ndarray,
+    areas: np.ndarray,
     rot: np.ndarray,
     x0: float,
     y0: float,
@@ -432,7 +427,6 @@ def _fk_one_ship(
     arrays; amp the complex amplitudes cⱼ(t) of ζ = Re Σ cⱼ e^{−ikⱼ(X cos χⱼ + Y sin χⱼ)} (with
     x0 = y0 = 0: already local, :meth:`WaveComponents.local_amplitudes`).
     """
-    n_v = body.shape[1]
     n_c = k.shape[0]
     # Per component: wave vector in turns/m, k / ln 2, and Re cⱼ e^{−iθ} = |cⱼ| cos(θ − arg cⱼ)
     # as modulus and phase offset in turns, with the ship's horizontal position folded in.
@@ -450,6 +444,37 @@ def _fk_one_ship(
         t = kxt[j] * x0 + kyt[j] * y0 - np.arctan2(amp[j].imag, amp[j].real) * _INV_TWO_PI
         offset[j] = t - np.rint(t)
         crest += mod[j]
+    _fk_core(
+        body, tri, tri_last, tri_first, spread, weights, areas, rot, z0, kxt, kyt, k2,
+        mod, offset, crest, rho_g, out,
+    )  # fmt: skip
+
+
+@nb.njit(fastmath=_FM, cache=True, nogil=True)
+def _fk_core(
+    body: np.ndarray,
+    tri: np.ndarray,
+    tri_last: np.ndarray,
+    tri_first: np.ndarray,
+    spread: np.ndarray,
+    weights: np.ndarray,
+    areas: np.ndarray,
+    rot: np.ndarray,
+    z0: float,
+    kxt: np.ndarray,
+    kyt: np.ndarray,
+    k2: np.ndarray,
+    mod: np.ndarray,
+    offset: np.ndarray,
+    crest: float,
+    rho_g: float,
+    out: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """The kernel after the per-component set-up (:func:`_fk_one_ship`): wave vectors kxt, kyt
+    [turns/m], k2 = k/ln 2 [1/m], moduli [m] and phase offsets [turns] of the components at
+    the ship's O, crest = Σ mod ≥ ζ; adds the earth-axis force and moment about O to out."""
+    n_v = body.shape[1]
+    n_c = kxt.shape[0]
     rx = np.empty(n_v)
     ry = np.empty(n_v)
     rz = np.empty(n_v)
@@ -526,7 +551,241 @@ def _fk_one_ship(
             for u in range(lo, min(hi, nb_)):
                 if zeta[u] >= 0.0:
                     pres[v0 + u] = rho_g * (z0 + rz[v0 + u] + acc[u - lo])
-    _integrate(tri, tri_last, tri_first, body, weights, rot, depth, pres, out)
+    _integrate(tri, tri_last, tri_first, body, weights, areas, rot, depth, pres, out)
+
+
+# ----------------------------------------------------------------------------- float32 kernel
+# The same algorithm with the wave sums in single precision (``method="fast32"``): 8 lanes per
+# AVX2 vector instead of 4 and shorter polynomials (:func:`~ship_gym.forces.fastmath.
+# cos_turns_f32`, :func:`~ship_gym.forces.fastmath.exp2_neg_f32`). What stays float64: the
+# rotation of the vertices, the hydrostatic part z of the depth and of the pressure, the
+# integration; only the wave terms (elevation ζ and the decayed dynamic pressure Σ e^{−k d} S)
+# are summed in float32. Errors: the phase in turns is formed in float32 (|t| ≲ 8 turns for
+# the S175 in a Tp = 11 s sea: ≲ 5e-7 turn), each term carries ≲ 3e-7 of its amplitude, so ζ
+# and the dynamic pressure are off by ~1e-6 of their size; the force and moment by ~1e-7 of the
+# hydrostatic ones (tests/physics/test_froude_krylov.py holds them to the reference at 2e-6).
+# Measured (scripts/bench_simulator.py, 1500-face S175, 50 components): ≈ 0.36 ns per
+# (vertex, component) pair in each of the two passes, ≈ 1.9× faster than float64 overall;
+# pressure sub-blocks of 128 vertices are ≈ 3 % faster than 64, elevation blocks of 128 not
+# faster than 256; polynomials one degree lower gave ≈ 4 % for 3× the error (not kept).
+_F32 = np.float32
+_SUB_F32 = 128  # vertices per pressure sub-block of the float32 kernel (a multiple of 8)
+_DECAY_CUTOFF_F32 = 30.0  # 2^−30 ≈ 1e-9: below float32 resolution of the sum
+
+
+@nb.njit(fastmath=_FM, cache=True)
+def _spatial_row_f32(
+    a: np.float32,
+    b: np.float32,
+    p: np.float32,
+    m: np.float32,
+    rx: np.ndarray,
+    ry: np.ndarray,
+    v0: int,
+    spatial: np.ndarray,
+    s0: int,
+    zeta: np.ndarray,
+    n: int,
+) -> None:  # pragma: no cover - compiled
+    """float32 :func:`_spatial_row`."""
+    vo = nb.uint64(v0)
+    so = nb.uint64(s0)
+    for u in range(nb.uint64(n)):
+        s = cos_turns_f32(a * rx[vo + u] + (b * ry[vo + u] + p), m)
+        spatial[so + u] = s
+        zeta[u] += s
+
+
+@nb.njit(fastmath=_FM, cache=True)
+def _spatial_row_1d_f32(
+    kt: np.float32,
+    p: np.float32,
+    m: np.float32,
+    proj: np.ndarray,
+    spatial: np.ndarray,
+    s0: int,
+    zeta: np.ndarray,
+    n: int,
+) -> None:  # pragma: no cover - compiled
+    """:func:`_spatial_row_f32` of a long-crested sea: phase kt·proj[u] + p [turns]."""
+    so = nb.uint64(s0)
+    for u in range(nb.uint64(n)):
+        s = cos_turns_f32(kt * proj[u] + p, m)
+        spatial[so + u] = s
+        zeta[u] += s
+
+
+@nb.njit(fastmath=_FM, cache=True)
+def _decayed_row_f32(
+    k2: np.float32, dpos: np.ndarray, spatial: np.ndarray, s0: int, acc: np.ndarray, n: int
+) -> None:  # pragma: no cover - compiled
+    """float32 :func:`_decayed_row`."""
+    so = nb.uint64(s0)
+    for u in range(nb.uint64(n)):
+        acc[u] += exp2_neg_f32(k2 * dpos[u]) * spatial[so + u]
+
+
+@nb.njit(fastmath=_FM, cache=True, nogil=True)
+def _fk_one_ship_f32(
+    body: np.ndarray,
+    tri: np.ndarray,
+    tri_last: np.ndarray,
+    tri_first: np.ndarray,
+    spread: np.ndarray,
+    weights: np.ndarray,
+    areas: np.ndarray,
+    rot: np.ndarray,
+    x0: float,
+    y0: float,
+    z0: float,
+    k: np.ndarray,
+    cos_dir: np.ndarray,
+    sin_dir: np.ndarray,
+    amp: np.ndarray,
+    rho_g: float,
+    out: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """:func:`_fk_one_ship` with the wave sums in float32 (same arguments, float64 arrays)."""
+    n_c = k.shape[0]
+    kxt = np.empty(n_c, dtype=np.float32)
+    kyt = np.empty(n_c, dtype=np.float32)
+    k2 = np.empty(n_c, dtype=np.float32)
+    mod = np.empty(n_c, dtype=np.float32)
+    offset = np.empty(n_c, dtype=np.float32)
+    crest = 0.0
+    for j in range(n_c):
+        ax = k[j] * cos_dir[j] * _INV_TWO_PI
+        ay = k[j] * sin_dir[j] * _INV_TWO_PI
+        kxt[j] = ax
+        kyt[j] = ay
+        k2[j] = k[j] * _INV_LN2
+        mod[j] = abs(amp[j])
+        t = ax * x0 + ay * y0 - np.arctan2(amp[j].imag, amp[j].real) * _INV_TWO_PI
+        offset[j] = t - np.rint(t)
+        crest += abs(amp[j])
+    _fk_core_f32(
+        body, tri, tri_last, tri_first, spread, weights, areas, rot, z0, kxt, kyt, k2,
+        mod, offset, crest, rho_g, out,
+    )  # fmt: skip
+
+
+@nb.njit(fastmath=_FM, cache=True, nogil=True)
+def _fk_core_f32(
+    body: np.ndarray,
+    tri: np.ndarray,
+    tri_last: np.ndarray,
+    tri_first: np.ndarray,
+    spread: np.ndarray,
+    weights: np.ndarray,
+    areas: np.ndarray,
+    rot: np.ndarray,
+    z0: float,
+    kxt: np.ndarray,
+    kyt: np.ndarray,
+    k2: np.ndarray,
+    mod: np.ndarray,
+    offset: np.ndarray,
+    crest: float,
+    rho_g: float,
+    out: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """:func:`_fk_core` with the wave sums in float32: kxt, kyt, k2, mod and offset are float32
+    arrays."""
+    n_v = body.shape[1]
+    n_c = kxt.shape[0]
+    # A long-crested sea (all components along one direction ±(ux, uy), the usual case): the
+    # phase is kⱼ/2π times the one projection s = ux x + uy y, formed once per vertex, so the
+    # pair loop has one multiply-add for the phase instead of two (and one stream fewer)
+    jmax = 0
+    for j in range(n_c):
+        if abs(kxt[j]) + abs(kyt[j]) > abs(kxt[jmax]) + abs(kyt[jmax]):
+            jmax = j
+    norm = math.hypot(float(kxt[jmax]), float(kyt[jmax]))
+    ux, uy = (kxt[jmax] / norm, kyt[jmax] / norm) if norm > 0.0 else (1.0, 0.0)
+    collinear = True
+    kt = np.empty(n_c, dtype=np.float32)
+    for j in range(n_c):
+        kt[j] = kxt[j] * ux + kyt[j] * uy
+        collinear &= abs(kxt[j] * uy - kyt[j] * ux) <= 1e-7 * norm
+    rx = np.empty(n_v, dtype=np.float32)
+    ry = np.empty(n_v, dtype=np.float32)
+    rz = np.empty(n_v)
+    r00, r01, r02 = rot[0, 0], rot[0, 1], rot[0, 2]
+    r10, r11, r12 = rot[1, 0], rot[1, 1], rot[1, 2]
+    r20, r21, r22 = rot[2, 0], rot[2, 1], rot[2, 2]
+    bxs, bys, bzs = body[0], body[1], body[2]
+    for v in range(nb.uint64(n_v)):
+        bx, by, bz = bxs[v], bys[v], bzs[v]
+        rx[v] = r00 * bx + r01 * by + r02 * bz
+        ry[v] = r10 * bx + r11 * by + r12 * bz
+        rz[v] = r20 * bx + r21 * by + r22 * bz
+    depth = np.empty(n_v)
+    pres = np.empty(n_v)
+    spatial = np.empty(n_c * _BLOCK, dtype=np.float32)
+    zeta = np.zeros(_BLOCK, dtype=np.float32)
+    proj = np.zeros(_BLOCK, dtype=np.float32)
+    dpos = np.empty(_SUB_F32, dtype=np.float32)
+    acc = np.empty(_SUB_F32, dtype=np.float32)
+    n_wave = n_v
+    while n_wave > 0:
+        v = n_wave - 1
+        rise = 0.0
+        for q in range(3):
+            rise += max(rot[2, q] * spread[q, v], rot[2, q] * spread[3 + q, v])
+        if not z0 + rz[v] + rise + crest < 0.0:
+            break
+        depth[v] = z0 + rz[v] + crest
+        pres[v] = 0.0
+        n_wave -= 1
+    zero = np.float32(0.0)
+    for v0 in range(0, n_wave, _BLOCK):
+        v1 = min(v0 + _BLOCK, n_wave)
+        nb_ = v1 - v0
+        for u in range(_BLOCK):
+            zeta[u] = zero
+        if collinear:
+            for u in range(nb_):
+                proj[u] = ux * rx[v0 + u] + uy * ry[v0 + u]
+            for j in range(n_c):
+                _spatial_row_1d_f32(kt[j], offset[j], mod[j], proj, spatial, j * _BLOCK, zeta, nb_)
+        else:
+            for j in range(n_c):
+                _spatial_row_f32(
+                    kxt[j], kyt[j], offset[j], mod[j], rx, ry, v0, spatial, j * _BLOCK, zeta, nb_
+                )
+        for u in range(nb_, min(nb_ + 7, _BLOCK)):  # padding lanes of a short last block
+            for j in range(n_c):
+                spatial[j * _BLOCK + u] = zero
+        vo = nb.uint64(v0)
+        for u in range(nb.uint64(nb_)):
+            depth[vo + u] = (z0 + rz[vo + u]) + zeta[u]
+            pres[vo + u] = 0.0
+        for u0 in range(0, nb_, _SUB_F32):
+            u1 = min(u0 + _SUB_F32, nb_)
+            lo = u0
+            while lo < u1 and not depth[v0 + lo] >= 0.0:
+                lo += 1
+            if lo == u1:
+                continue
+            hi = u1
+            while not depth[v0 + hi - 1] >= 0.0:
+                hi -= 1
+            lo -= lo % 8
+            hi = min(hi + (-hi) % 8, _BLOCK)
+            n = hi - lo
+            dmin = np.inf
+            for u in range(n):
+                dp = max(depth[v0 + lo + u], 0.0) if lo + u < nb_ else 0.0
+                dpos[u] = dp
+                acc[u] = zero
+                dmin = min(dmin, dp)
+            for j in range(n_c):
+                if k2[j] * dmin < _DECAY_CUTOFF_F32:
+                    _decayed_row_f32(k2[j], dpos, spatial, j * _BLOCK + lo, acc, n)
+            for u in range(lo, min(hi, nb_)):
+                if depth[v0 + u] >= 0.0:
+                    pres[v0 + u] = rho_g * (z0 + rz[v0 + u] + acc[u - lo])
+    _integrate(tri, tri_last, tri_first, body, weights, areas, rot, depth, pres, out)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -537,6 +796,7 @@ def _fk_batch(
     tri_first: np.ndarray,
     spread: np.ndarray,
     weights: np.ndarray,
+    areas: np.ndarray,
     rot: np.ndarray,
     z0: np.ndarray,
     k: np.ndarray,
@@ -545,26 +805,49 @@ def _fk_batch(
     amp: np.ndarray,
     rho_g: float,
     out: np.ndarray,
+    single: bool,
 ) -> None:  # pragma: no cover - compiled
     for s in range(rot.shape[0]):
-        _fk_one_ship(
-            body,
-            tri,
-            tri_last,
-            tri_first,
-            spread,
-            weights,
-            rot[s],
-            0.0,
-            0.0,
-            z0[s],
-            k[s],
-            cx[s],
-            sx[s],
-            amp[s],
-            rho_g,
-            out[s],
-        )
+        if single:
+            _fk_one_ship_f32(
+                body,
+                tri,
+                tri_last,
+                tri_first,
+                spread,
+                weights,
+                areas,
+                rot[s],
+                0.0,
+                0.0,
+                z0[s],
+                k[s],
+                cx[s],
+                sx[s],
+                amp[s],
+                rho_g,
+                out[s],
+            )
+        else:
+            _fk_one_ship(
+                body,
+                tri,
+                tri_last,
+                tri_first,
+                spread,
+                weights,
+                areas,
+                rot[s],
+                0.0,
+                0.0,
+                z0[s],
+                k[s],
+                cx[s],
+                sx[s],
+                amp[s],
+                rho_g,
+                out[s],
+            )
 
 
 @nb.njit(cache=True, nogil=True, parallel=True)
@@ -575,6 +858,7 @@ def _fk_batch_parallel(
     tri_first: np.ndarray,
     spread: np.ndarray,
     weights: np.ndarray,
+    areas: np.ndarray,
     rot: np.ndarray,
     z0: np.ndarray,
     k: np.ndarray,
@@ -583,26 +867,49 @@ def _fk_batch_parallel(
     amp: np.ndarray,
     rho_g: float,
     out: np.ndarray,
+    single: bool,
 ) -> None:  # pragma: no cover - compiled
     for s in nb.prange(rot.shape[0]):
-        _fk_one_ship(
-            body,
-            tri,
-            tri_last,
-            tri_first,
-            spread,
-            weights,
-            rot[s],
-            0.0,
-            0.0,
-            z0[s],
-            k[s],
-            cx[s],
-            sx[s],
-            amp[s],
-            rho_g,
-            out[s],
-        )
+        if single:
+            _fk_one_ship_f32(
+                body,
+                tri,
+                tri_last,
+                tri_first,
+                spread,
+                weights,
+                areas,
+                rot[s],
+                0.0,
+                0.0,
+                z0[s],
+                k[s],
+                cx[s],
+                sx[s],
+                amp[s],
+                rho_g,
+                out[s],
+            )
+        else:
+            _fk_one_ship(
+                body,
+                tri,
+                tri_last,
+                tri_first,
+                spread,
+                weights,
+                areas,
+                rot[s],
+                0.0,
+                0.0,
+                z0[s],
+                k[s],
+                cx[s],
+                sx[s],
+                amp[s],
+                rho_g,
+                out[s],
+            )
 
 
 # ----------------------------------------------------------------------------- public API
@@ -634,8 +941,10 @@ def froude_krylov_hydrostatic(
         (3, 3) body-to-earth rotation matrix.
     rho, g : float
         Water density [kg/m³] and gravity [m/s²].
-    method : {"fast", "reference"}
-        Numba kernel or numpy reference implementation.
+    method : {"fast", "fast32", "reference"}
+        Numba kernel (float64, or with the wave sums in float32: see the notes of the float32
+        kernel section; about twice as fast, errors ~1e-7 of the hydrostatic force) or numpy
+        reference implementation.
 
     Returns
     -------
@@ -644,18 +953,20 @@ def froude_krylov_hydrostatic(
     """
     position = np.asarray(position, dtype=np.float64)
     rotation = np.ascontiguousarray(rotation, dtype=np.float64)
-    if method == "fast":
+    if method in ("fast", "fast32"):
+        kernel = _fk_one_ship_f32 if method == "fast32" else _fk_one_ship
         # the kernel folds the horizontal position into the amplitudes itself (saves ~6 µs of
         # numpy calls per evaluation)
         out = np.zeros(6)
         lay = panels._layout
-        _fk_one_ship(
+        kernel(
             lay.body,
             lay.triangles,
             lay.tri_last,
             lay.tri_first,
             lay.spread,
             lay.weights,
+            lay.areas,
             rotation,
             float(position[0]),
             float(position[1]),
@@ -671,7 +982,7 @@ def froude_krylov_hydrostatic(
     if method == "reference":
         amp = waves.local_amplitudes(phasor, position[0], position[1])
         return _reference(panels, waves, amp, position, rotation, rho, g)
-    raise ValueError(f"method must be 'fast' or 'reference', got {method!r}")
+    raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
 
 
 def froude_krylov_hydrostatic_batch(
@@ -686,6 +997,7 @@ def froude_krylov_hydrostatic_batch(
     rho: float,
     g: float,
     parallel: bool = False,
+    single_precision: bool = False,
 ) -> np.ndarray:
     """Batched fast kernel: many ships (same hull) in one call.
 
@@ -706,6 +1018,8 @@ def froude_krylov_hydrostatic_batch(
         Spread the ships over numba's threads (prange; ``NUMBA_NUM_THREADS``, by default one per
         core). Off by default: in a process that also runs torch, the two thread pools compete
         for the cores (see the notes of the fast-kernel section). Results are identical.
+    single_precision : bool
+        Wave sums in float32 (``method="fast32"`` of :func:`froude_krylov_hydrostatic`).
 
     Returns
     -------
@@ -723,6 +1037,7 @@ def froude_krylov_hydrostatic_batch(
         lay.tri_first,
         lay.spread,
         lay.weights,
+        lay.areas,
         np.ascontiguousarray(rotation, dtype=np.float64),
         np.ascontiguousarray(depth_of_origin, dtype=np.float64),
         np.ascontiguousarray(wavenumber, dtype=np.float64),
@@ -731,6 +1046,7 @@ def froude_krylov_hydrostatic_batch(
         np.ascontiguousarray(local_amplitude, dtype=np.complex128),
         rho * g,
         out,
+        bool(single_precision),
     )
     return out
 
@@ -768,8 +1084,8 @@ class FroudeKrylovHydrostatics(ForceModel):
         Hull with its closed mesh (to the deck).
     wave_field : WaveField or None
         Incident waves (None: calm water, pure hydrostatics).
-    method : {"fast", "reference"}
-        Kernel implementation.
+    method : {"fast", "fast32", "reference"}
+        Kernel implementation (:func:`froude_krylov_hydrostatic`).
 
     Notes
     -----
@@ -779,8 +1095,8 @@ class FroudeKrylovHydrostatics(ForceModel):
     name = "froude_krylov_hydrostatic"
 
     def __init__(self, hull: Hull, wave_field: WaveField | None = None, *, method: Method = "fast"):
-        if method not in ("fast", "reference"):
-            raise ValueError(f"method must be 'fast' or 'reference', got {method!r}")
+        if method not in _METHODS:
+            raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
         self.hull = hull
         self.method: Method = method
         self.panels = HullPanels.from_mesh(hull.mesh)

@@ -147,14 +147,16 @@ def test_reset_subset_leaves_others_untouched():
 
 
 def test_control_models_run_per_ship_with_array_commands():
-    # Manoeuvring and a commanded rudder (a servo state per ship) have no batch version: the
-    # builder wraps one copy per ship in PerShipForceModel; each ship gets its own command.
+    # The per-ship reference path (control="per_ship"): manoeuvring and a commanded rudder (a
+    # servo state per ship) wrapped one copy per ship in PerShipForceModel; each ship gets its
+    # own command.
+
     setup = ShipSetup(speed=5.0, manoeuvring=True, rudder="command", integrator="holloway")
     sims = [
         build_simulator(setup, SEA_SMALL, wave_heading=b, rng=np.random.default_rng(i))
         for i, b in enumerate((2.3, 1.2))
     ]
-    batch = _batch_like(setup, sims)
+    batch = _batch_like(setup, sims, control="per_ship")
     assert isinstance(batch.forces[-1], PerShipForceModel)
     assert batch.n_states == sims[0].n_states > sims[0].forces[1].n_states  # servo states
     command = np.array([0.1, -0.05])  # rudder angles [rad]

@@ -119,7 +119,7 @@ def test_wave_crest_lifts_and_trough_drops(s175):
 def test_bad_method_is_rejected(s175):
     hull, panels = s175
     waves, phasor = _sea(3, 0)
-    with pytest.raises(ValueError, match="method must be 'fast' or 'reference'"):
+    with pytest.raises(ValueError, match="method must be one of"):
         froude_krylov_hydrostatic(
             panels, waves, phasor, np.zeros(3), np.eye(3), rho=hull.rho, g=hull.g, method="x"
         )
@@ -220,3 +220,114 @@ def test_parallel_batch_equals_serial(s175):
     np.testing.assert_array_equal(parallel, serial)
     empty = froude_krylov_hydrostatic_batch(panels, *(a[:0] for a in args), rho=hull.rho, g=hull.g)
     assert empty.shape == (0, 6)
+
+
+# ----------------------------------------------------------------------------- float32 wave sums
+# method="fast32" sums the wave terms in float32 (phases formed in float32, polynomials with
+# errors ≲ 3e-7 of each term): ζ and the dynamic pressure carry ~1e-6 of their size, while the
+# hydrostatic part and the integration stay float64. Against the reference the force and moment
+# must agree to 2e-6 of their largest component (observed ≲ 2e-8 on the S175 at 2400 faces;
+# the documented bound is 1e-7 of the hydrostatic scale, the tolerance leaves 20× room).
+F32_TOL = 2e-6
+
+
+def _agree32(panels, hull, waves, phasor, pos, rot):
+    fast = froude_krylov_hydrostatic(
+        panels, waves, phasor, pos, rot, rho=hull.rho, g=hull.g, method="fast32"
+    )
+    ref = froude_krylov_hydrostatic(
+        panels, waves, phasor, pos, rot, rho=hull.rho, g=hull.g, method="reference"
+    )
+    scale = np.abs(ref[:3]).max(), np.abs(ref[3:]).max()
+    np.testing.assert_allclose(fast[:3], ref[:3], rtol=0, atol=F32_TOL * scale[0])
+    np.testing.assert_allclose(fast[3:], ref[3:], rtol=0, atol=F32_TOL * scale[1])
+    return fast
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_fast32_matches_reference(s175, seed):
+    hull, panels = s175
+    waves, phasor = _sea(50, seed, amplitude=1.2)
+    rng = np.random.default_rng(100 + seed)
+    pos = np.array([rng.uniform(-500, 500), rng.uniform(-500, 500), rng.uniform(-1, 1)])
+    rot = rotation_matrix(*rng.uniform(-0.4, 0.4, 2), rng.uniform(-np.pi, np.pi))
+    _agree32(panels, hull, waves, phasor, pos, rot)
+
+
+@pytest.mark.parametrize(
+    ("heel_deg", "heave", "amplitude"),
+    [(60.0, 0.0, 0.5), (20.0, 8.0, 1.0), (10.0, 0.0, 8.0), (0.0, 30.0, 0.5), (0.0, -20.0, 0.5)],
+)
+def test_fast32_matches_reference_in_adversarial_cases(s175, heel_deg, heave, amplitude):
+    # heeled, deck immersed, huge waves, fully submerged, out of the water (exactly zero)
+    hull, panels = s175
+    waves, phasor = _sea(50, 7, amplitude=amplitude)
+    rot = rotation_matrix(np.radians(heel_deg), 0.02, 0.7)
+    fast = _agree32(panels, hull, waves, phasor, np.array([-35.0, 12.0, heave]), rot)
+    if heave == -20.0:
+        np.testing.assert_array_equal(fast, 0.0)
+
+
+def test_fast32_calm_water_is_hydrostatics(s175):
+    # no wave terms: the float32 path reduces to the float64 hydrostatics (1e-12: only the
+    # rounding of zero wave sums, which are exact zeros)
+    hull, panels = s175
+    waves, _ = _sea(10, 0)
+    calm = np.zeros(10, complex)
+    eq = equilibrium(hull, np.radians(20.0))
+    rot = rotation_matrix(np.radians(20.0), eq.trim, 0.0)
+    pos = np.array([0.0, 0.0, eq.heave])
+    args = (panels, waves, calm, pos, rot)
+    f32 = froude_krylov_hydrostatic(*args, rho=hull.rho, g=hull.g, method="fast32")
+    f64 = froude_krylov_hydrostatic(*args, rho=hull.rho, g=hull.g, method="fast")
+    np.testing.assert_allclose(f32, f64, rtol=1e-12, atol=1e-6)
+
+
+def test_fast32_batch_equals_single(s175):
+    hull, panels = s175
+    ships = []
+    for s in range(3):
+        waves, phasor = _sea(30, s)
+        ships.append(
+            (
+                waves,
+                phasor,
+                np.array([10.0 * s, -5.0 * s, 0.2]),
+                rotation_matrix(0.05 * s, -0.02 * s, 0.3 * s),
+            )
+        )
+    single = np.array(
+        [
+            froude_krylov_hydrostatic(
+                panels, w, c, np.array([0.0, 0.0, p[2]]), r, rho=hull.rho, g=hull.g,
+                method="fast32",
+            )
+            for w, c, p, r in [(w, w.local_amplitudes(c, p[0], p[1]), p, r) for w, c, p, r in ships]
+        ]
+    )  # fmt: skip
+    batch = froude_krylov_hydrostatic_batch(
+        panels,
+        np.array([w.wavenumber for w, *_ in ships]),
+        np.array([w.cos_direction for w, *_ in ships]),
+        np.array([w.sin_direction for w, *_ in ships]),
+        np.array([w.local_amplitudes(c, p[0], p[1]) for w, c, p, _ in ships]),
+        np.array([p[2] for *_, p, _ in ships]),
+        np.array([r for *_, r in ships]),
+        rho=hull.rho,
+        g=hull.g,
+        single_precision=True,
+    )
+    np.testing.assert_array_equal(batch, single)
+
+
+@pytest.mark.parametrize("direction", [np.pi, 0.6, -2.2])
+def test_fast32_long_crested_sea_matches_reference(s175, direction):
+    # all components along one direction: the float32 kernel forms one projection per vertex
+    # (its long-crested branch); same 2e-6 bar as the general branch
+    hull, panels = s175
+    rng = np.random.default_rng(21)
+    omega = np.sort(rng.uniform(0.3, 1.6, 50))
+    waves = WaveComponents.from_arrays(omega**2 / 9.81, np.full(50, direction))
+    phasor = 1.2 * rng.uniform(0.2, 1.0, 50) * np.exp(1j * rng.uniform(0, 2 * np.pi, 50))
+    rot = rotation_matrix(0.1, -0.03, 0.4)
+    _agree32(panels, hull, waves, phasor, np.array([30.0, -8.0, 0.3]), rot)

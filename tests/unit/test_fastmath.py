@@ -7,7 +7,15 @@ import numba as nb
 import numpy as np
 import pytest
 
-from ship_gym.forces.fastmath import cos_turns, exp2_neg, exp_neg, sincos, sincos_turns
+from ship_gym.forces.fastmath import (
+    cos_turns,
+    cos_turns_f32,
+    exp2_neg,
+    exp2_neg_f32,
+    exp_neg,
+    sincos,
+    sincos_turns,
+)
 
 # The kernels call these from loops compiled with "reassoc": the functions must keep their own
 # (exact) evaluation order there. Test them from such loops, as used.
@@ -203,3 +211,62 @@ def test_loops_vectorise():
     calls = [line for line in asm.splitlines() if "call" in line]
     assert not [line for line in calls if re.search(r"\b(sin|cos|exp|sincos)\b", line)]
     assert "vroundpd" in asm or "vrndscalepd" in asm
+
+
+# ----------------------------------------------------------------------------- float32 tier
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _cos_turns_f32_loop(t, m):
+    out = np.empty_like(t)
+    for i in range(t.shape[0]):
+        out[i] = cos_turns_f32(t[i], m[i])
+    return out
+
+
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _exp2_f32_loop(y):
+    out = np.empty_like(y)
+    for i in range(y.shape[0]):
+        out[i] = exp2_neg_f32(y[i])
+    return out
+
+
+def test_cos_turns_f32_matches_numpy():
+    # float32 arguments up to 20 turns (the Froude–Krylov kernel's phases stay below ~10):
+    # the result is compared with the float64 cosine of the *float32* argument, so only the
+    # function's own error counts. Documented bound 3e-7·|amplitude| (float32 rounding of a
+    # degree-10 polynomial and one doubling; the truncation is 2e-10); the result is float32.
+    rng = np.random.default_rng(3)
+    t = np.concatenate([rng.uniform(-20, 20, 200_000), np.arange(-8, 8.25, 0.25)])
+    t = t.astype(np.float32)
+    m = rng.uniform(0.0, 3.0, t.size).astype(np.float32)
+    out = _cos_turns_f32_loop(t, m)
+    assert out.dtype == np.float32
+    ref = m.astype(float) * np.cos(2.0 * np.pi * t.astype(float))
+    assert np.max(np.abs(out - ref) / np.maximum(m, 1e-30)) < 3e-7
+
+
+def test_exp2_neg_f32_matches_numpy():
+    # relative error ≲ 2e-7 over the kernel's range (y = k d / ln 2 ≥ 0), clamped at 2^−126
+    rng = np.random.default_rng(4)
+    y = np.concatenate([rng.uniform(0.0, 130.0, 200_000), np.arange(0.0, 130.0, 0.5)])
+    y = y.astype(np.float32)
+    out = _exp2_f32_loop(y)
+    assert out.dtype == np.float32
+    ref = np.exp2(-np.minimum(y.astype(float), 126.0))
+    assert np.max(np.abs(out / ref - 1.0)) < 2e-7
+    assert _exp2_f32_loop(np.array([0.0], np.float32))[0] == pytest.approx(1.0, abs=1e-7)
+
+
+def test_float32_loops_vectorise_in_single_precision():
+    # 8 lanes: the loops must compile to packed single-precision code with no double-precision
+    # arithmetic (a Python float constant would silently promote them) and no libm calls
+    _cos_turns_f32_loop(np.zeros(8, np.float32), np.ones(8, np.float32))
+    _exp2_f32_loop(np.zeros(8, np.float32))
+    for fn in (_cos_turns_f32_loop, _exp2_f32_loop):
+        asm = fn.inspect_asm(fn.signatures[0])
+        if "ymm" not in asm and "zmm" not in asm:
+            pytest.skip("no 256-bit vector code on this target")
+        assert re.search(r"v\w*ps\s+%[yz]mm", asm)
+        assert not re.search(r"v(add|sub|mul|fmadd\w*)pd\b", asm)
+        calls = [line for line in asm.splitlines() if "call" in line]
+        assert not [line for line in calls if re.search(r"\b(cos|exp2?f?)\b", line)]

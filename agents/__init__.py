@@ -1,0 +1,1 @@
+"""Reinforcement-learning agents for ship_gym: classical baselines, SB3 training, evaluation."""

@@ -1,0 +1,308 @@
+"""``ship_gym/CapsizeAvoidance-v0``: make way in steep following seas without capsizing.
+
+Matusiak's capsize scenario (Matusiak 2003, "Importance of memory effect for capsizing
+prediction": regular waves λ = 1.5 L, amplitude 4.5 m for L = 150 m, Fn 0.2–0.4, headings 0–45°
+off following seas; the A-1 container ship capsized at Fn 0.4, 30°) on the S175, scaled with
+length (amplitude 5.25 m, H ≈ 10.5 m, λ ≈ 262 m). The heading autopilot steers; the agent
+changes its set-point and the engine telegraph. The task (:class:`CapsizeAvoidanceTask`) runs on
+:class:`ship_gym.envs.ship_task.ShipTask`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ship_gym.conventions import GRAVITY
+from ship_gym.envs.base import TaskEnv, TaskVectorEnv
+from ship_gym.envs.ship_task import (
+    S175_MESH,
+    SeaSampler,
+    ShipTask,
+    StepStatistics,
+    check_positive,
+    check_range,
+    check_weight,
+    s175_setup,
+)
+
+__all__ = [
+    "MAX_EPISODE_STEPS",
+    "CapsizeAvoidanceEnv",
+    "CapsizeAvoidanceTask",
+    "CapsizeAvoidanceVectorEnv",
+]
+
+MAX_EPISODE_STEPS = 1500
+"""Time limit in control steps (750 s at the default control_dt = 0.5 s; Matusiak ran 720 s)."""
+
+S175_LPP = 175.0  # [m]
+
+
+def _wrap(angle: NDArray) -> NDArray:
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+class CapsizeAvoidanceTask(ShipTask):
+    """N capsize-avoidance episodes (see :class:`CapsizeAvoidanceEnv` for the arguments)."""
+
+    def __init__(
+        self,
+        num_envs: int,
+        *,
+        froude_number: float = 0.35,
+        froude_range: tuple[float, float] | None = (0.3, 0.4),
+        sea_kind: Literal["regular", "irregular"] = "regular",
+        wave_height_range_m: tuple[float, float] = (10.0, 11.0),
+        wavelength_ratio_range: tuple[float, float] = (1.4, 1.6),
+        wave_heading_range_deg: tuple[float, float] = (-45.0, 45.0),
+        n_wave_components: int = 40,
+        wave_ramp_time_s: float = 50.0,
+        gm_range_m: tuple[float, float] | None = None,
+        kg_m: float | None = None,
+        heading_rate_deg: float = 2.0,
+        max_course_deviation_deg: float = 90.0,
+        shaft_speed_range: tuple[float, float] = (0.3, 1.2),
+        shaft_rate_per_s: float = 0.01,
+        physics_dt_s: float = 0.1,
+        control_dt_s: float = 0.5,
+        integrator: Literal["holloway", "rk4"] = "holloway",
+        hull_mesh: Sequence[int] = S175_MESH,
+        capsize_angle_deg: float | None = None,
+        dangerous_roll_deg: float = 30.0,
+        progress_weight: float = 1.0,
+        danger_weight: float = 1.0,
+        capsize_penalty: float = 100.0,
+        sensor_noise: float = 0.0,
+        wave_preview_m: Sequence[float] = (),
+    ) -> None:
+        if sea_kind not in ("regular", "irregular"):
+            raise ValueError(f"sea_kind must be 'regular' or 'irregular', got {sea_kind!r}")
+        ratio = check_range(
+            "wavelength_ratio_range", wavelength_ratio_range, low=0.2, high=5.0, unit="λ/Lpp"
+        )
+        # deep water: T = √(2π λ / g) (the peak period of an irregular sea)
+        periods = tuple(math.sqrt(2.0 * math.pi * r * S175_LPP / GRAVITY) for r in ratio)
+        self.heading_rate = math.radians(
+            check_positive("heading_rate_deg", heading_rate_deg, "deg", 45.0)
+        )
+        self.max_course_deviation = math.radians(
+            check_positive("max_course_deviation_deg", max_course_deviation_deg, "deg", 180.0)
+        )
+        lo, hi = check_range(
+            "shaft_speed_range", shaft_speed_range, low=0.0, high=2.0, unit="× self-propulsion rpm"
+        )
+        if hi <= lo:
+            raise ValueError(f"shaft_speed_range must have min < max, got {shaft_speed_range!r}")
+        self.shaft_fraction_range = (lo, hi)
+        self.shaft_rate = check_positive("shaft_rate_per_s", shaft_rate_per_s, "1/s", 10.0)
+        if froude_range is not None:
+            froude_range = check_range("froude_range", froude_range, low=0.05, high=0.5, unit="-")
+        self.progress_weight = check_weight("progress_weight", progress_weight)
+        self.danger_weight = check_weight("danger_weight", danger_weight)
+        self.capsize_penalty = check_weight("capsize_penalty", capsize_penalty)
+        self.action_names = (
+            f"heading set-point change (-1..1 = ±{heading_rate_deg:g} deg per step)",
+            f"telegraph (-1..1 = {lo:g}..{hi:g} × self-propulsion rpm at Fn {froude_number:g})",
+        )
+        setup = s175_setup(
+            froude_number=froude_number,
+            physics_dt=physics_dt_s,
+            integrator=integrator,
+            rudder="autopilot",
+            hull_mesh=hull_mesh,
+            kg=kg_m,
+        )
+        sea = SeaSampler(
+            kind=sea_kind,
+            height_range=wave_height_range_m,
+            period_range=periods,
+            heading_range_deg=wave_heading_range_deg,
+            n_components=n_wave_components,
+            ramp_time=wave_ramp_time_s,
+        )
+        speed_range = None
+        if froude_range is not None:
+            speed_range = tuple(f * math.sqrt(GRAVITY * S175_LPP) for f in froude_range)
+        super().__init__(
+            num_envs,
+            setup=setup,
+            sea=sea,
+            control_dt=control_dt_s,
+            speed_range=speed_range,  # type: ignore[arg-type]
+            gm_range=gm_range_m,
+            capsize_angle_deg=capsize_angle_deg,
+            dangerous_roll_deg=dangerous_roll_deg,
+            sensor_noise=sensor_noise,
+            wave_preview_m=wave_preview_m,
+            extra_observations=(
+                ("heading from voyage course [rad]", -math.pi, math.pi),
+                ("heading set-point from voyage course [rad]", -math.pi, math.pi),
+                ("telegraph shaft speed [rev/s]", 0.0, 20.0),
+            ),
+        )
+        self.shaft_target = self.commands["shaft_speed"].copy()
+        self.voyage_course = 0.0  # [rad], the initial heading (north)
+
+    # ------------------------------------------------------------------ hooks
+    def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
+        self.shaft_target[i] = self.commands["shaft_speed"][i]
+        return {}
+
+    def _apply_actions(self, actions: NDArray) -> None:
+        dev = _wrap(self.heading_setpoint + actions[:, 0] * self.heading_rate - self.voyage_course)
+        np.clip(dev, -self.max_course_deviation, self.max_course_deviation, out=dev)
+        self.heading_setpoint[:] = self.voyage_course + dev
+        self.commands["heading"][:] = self.heading_setpoint
+        lo, hi = self.shaft_fraction_range
+        fraction = lo + 0.5 * (actions[:, 1] + 1.0) * (hi - lo)
+        self.shaft_target[:] = fraction * self._nominal_shaft_speed
+        step = self.shaft_rate * self._nominal_shaft_speed * self.control_dt
+        n = self.commands["shaft_speed"]
+        np.clip(self.shaft_target, n - step, n + step, out=n)
+
+    def _extra_observations(self) -> NDArray:
+        return np.column_stack(
+            [
+                _wrap(self.sim.eta[:, 5] - self.voyage_course),
+                _wrap(self.heading_setpoint - self.voyage_course),
+                self.shaft_target,
+            ]
+        )
+
+    def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
+        d = self.sim.eta[:, :2] - stats.position_before
+        along = d[:, 0] * math.cos(self.voyage_course) + d[:, 1] * math.sin(self.voyage_course)
+        scale = self.setup.speed * self.control_dt
+        return {
+            "progress": self.progress_weight * along / scale,
+            "dangerous_roll": -self.danger_weight * stats.danger_fraction,
+            "capsize": -self.capsize_penalty * stats.newly_capsized,
+        }
+
+    def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
+        return {
+            "heading_error_deg": np.degrees(self.heading_error()),
+            "distance_along_voyage_m": self.sim.eta[:, 0] * math.cos(self.voyage_course)
+            + self.sim.eta[:, 1] * math.sin(self.voyage_course),
+        }
+
+    def _action_labels(self, i: int) -> dict[str, float]:
+        out = super()._action_labels(i)
+        out["heading set-point [deg]"] = math.degrees(float(self.heading_setpoint[i]))
+        return out
+
+
+class CapsizeAvoidanceEnv(TaskEnv):
+    """Make way along a voyage course in steep following seas without capsizing the S175.
+
+    ## Description
+
+    Matusiak's capsize scenario (Matusiak 2003: regular waves of length 1.5 L and amplitude
+    4.5 m for L = 150 m, Froude numbers 0.2–0.4, headings 0–45° off following seas; the model
+    capsized at Fn 0.4, 30°) on the ITTC S175 container ship, scaled with length: λ ≈ 1.5 ×
+    175 m, H ≈ 10.5 m (steepness ≈ 1/25), Fn 0.3–0.4. The 6-DOF model (nonlinear Froude–Krylov
+    and hydrostatics on the wetted hull, radiation memory, diffraction, Ikeda roll damping,
+    resistance, propeller, manoeuvring forces) is steered by a PID heading autopilot (tuned on
+    the Nomoto model identified for the hull) acting on a rudder behind its servo. The agent
+    changes the autopilot's heading set-point and the engine telegraph; it is rewarded for
+    progress along the voyage course (north, the initial heading) and penalised for dangerous
+    roll and for capsizing. Slowing down or turning away from the waves reduces the risk of
+    pure-loss-of-stability capsize and broaching, at the cost of progress.
+
+    ## Action Space
+
+    ``Box(-1, 1, (2,), float32)``:
+
+    * ``a[0]`` — heading set-point change ψ_ref += a · ``heading_rate_deg`` per control step,
+      with |ψ_ref − voyage course| ≤ ``max_course_deviation_deg``;
+    * ``a[1]`` — telegraph: target shaft speed = (lo + (a + 1)/2 (hi − lo)) × the calm-water
+      self-propulsion shaft speed at ``froude_number`` (``shaft_speed_range`` = (lo, hi)); the
+      shaft speed follows at ≤ ``shaft_rate_per_s`` × that shaft speed per second.
+
+    ## Observation Space
+
+    ``Box(float32)`` (``env.observation_names``), each entry clipped to its bound: roll [rad],
+    pitch [rad], heave [m], roll rate [rad/s], pitch rate [rad/s], heave velocity [m/s], yaw
+    rate [rad/s], surge speed [m/s], sway velocity [m/s], heading error wrap(ψ_ref − ψ) [rad],
+    cos β and sin β of the relative wave heading [-], rudder angle [rad], shaft speed [rev/s]
+    (as in :class:`ship_gym.envs.course_keeping.CourseKeepingEnv`, entries 0–13), then heading
+    from the voyage course [rad], heading set-point from the voyage course [rad], telegraph
+    target shaft speed [rev/s], and the optional wave preview [m].
+
+    ## Rewards
+
+    Σ of the weighted terms (``info["reward_<term>"]``):
+
+    * ``progress`` = progress_weight · Δs / (U_ref Δt_c), Δs the distance made good along the
+      voyage course in the control step (1 per step at the reference speed on course);
+    * ``dangerous_roll`` = −danger_weight × the fraction of the physics steps with |φ| above
+      ``dangerous_roll_deg``;
+    * ``capsize`` = −capsize_penalty in the step the ship capsizes.
+
+    ``info["cost"]`` (Safe RL) is the dangerous-roll fraction.
+
+    ## Starting State
+
+    Free-floating equilibrium heading north (the voyage course) at a speed uniform in
+    ``froude_range`` (shaft at its self-propulsion rpm), autopilot set-point on the course. Per
+    episode, from the reset seed: wave height, wavelength (period) and relative heading β
+    (uniform in the ranges), the phase (regular) or components (irregular), optionally the
+    loading's GM. The waves ramp up over ``wave_ramp_time_s`` (Matusiak eq. 12, T_f = 50 s).
+
+    ## Episode End
+
+    Terminated on capsize: |φ| above the angle of vanishing stability of the episode's loading
+    (66.2° for the nominal S175; ``capsize_angle_deg`` overrides) at any physics step, or a
+    diverged integration (``info["diverged"]``). Truncated after ``MAX_EPISODE_STEPS`` = 1500
+    control steps (750 s).
+
+    ## Arguments
+
+    | kwarg | default | unit | meaning |
+    |---|---|---|---|
+    | froude_number | 0.35 | - | reference speed (radiation, diffraction, autopilot, telegraph) |
+    | froude_range | (0.3, 0.4) | - | initial Froude number range (None: froude_number) |
+    | sea_kind | "regular" | - | "regular" or "irregular" (JONSWAP, Hs, Tp from λ) |
+    | wave_height_range_m | (10, 11) | m | H (regular) or Hs (irregular) |
+    | wavelength_ratio_range | (1.4, 1.6) | - | λ/Lpp (peak wavelength if irregular) |
+    | wave_heading_range_deg | (-45, 45) | deg | relative heading β (0 following seas) |
+    | n_wave_components | 40 | - | components of an irregular sea |
+    | wave_ramp_time_s | 50 | s | start-up ramp of the waves |
+    | gm_range_m | None | m | GM range of the loading (None: nominal) |
+    | kg_m | None | m | KG of the nominal loading (None: 9.55 m) |
+    | heading_rate_deg | 2 | deg | set-point change per step at a = ±1 |
+    | max_course_deviation_deg | 90 | deg | largest set-point deviation from the course |
+    | shaft_speed_range | (0.3, 1.2) | - | telegraph range, × self-propulsion rpm |
+    | shaft_rate_per_s | 0.01 | 1/s | shaft acceleration, × self-propulsion rpm per s |
+    | physics_dt_s | 0.1 | s | physics time step |
+    | control_dt_s | 0.5 | s | control step (integer multiple of physics_dt_s) |
+    | integrator | "holloway" | - | "holloway" or "rk4" |
+    | hull_mesh | (60, 12, 6, 4) | - | S175 mesh (sections, panels below/above, deck) |
+    | capsize_angle_deg | None | deg | capsize angle (None: vanishing angle) |
+    | dangerous_roll_deg | 30 | deg | roll angle of the cost and the danger term |
+    | progress_weight | 1.0 | - | weight of the progress term |
+    | danger_weight | 1.0 | - | weight of the dangerous-roll term |
+    | capsize_penalty | 100 | - | penalty paid at capsize |
+    | sensor_noise | 0 | - | multiplier of the sensor accuracies |
+    | wave_preview_m | () | m | distances ahead of O of the elevation preview |
+
+    ## Version History
+
+    * v0: initial version.
+    """
+
+    task_class = CapsizeAvoidanceTask
+
+
+class CapsizeAvoidanceVectorEnv(TaskVectorEnv):
+    """N episodes of :class:`CapsizeAvoidanceEnv` in one BatchSimulator (same arguments).
+
+    Episode i reset with ``seed=s`` is the single environment reset with ``seed=s + i``.
+    """
+
+    task_class = CapsizeAvoidanceTask

@@ -1,0 +1,302 @@
+"""``ship_gym/CourseKeeping-v0``: steer the S175 on a heading in irregular seas with its rudder.
+
+The task (:class:`CourseKeepingTask`) runs on :class:`ship_gym.envs.ship_task.ShipTask`; the
+Gymnasium faces are :class:`CourseKeepingEnv` (one episode) and :class:`CourseKeepingVectorEnv`
+(N episodes in one BatchSimulator). The environment docstring (Gymnasium v5 template) lists
+every keyword argument with its unit.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ship_gym.envs.base import TaskEnv, TaskVectorEnv
+from ship_gym.envs.ship_task import (
+    S175_MESH,
+    SeaSampler,
+    ShipTask,
+    StepStatistics,
+    check_positive,
+    check_weight,
+    s175_setup,
+)
+
+__all__ = ["MAX_EPISODE_STEPS", "CourseKeepingEnv", "CourseKeepingTask", "CourseKeepingVectorEnv"]
+
+MAX_EPISODE_STEPS = 1000
+"""Time limit in control steps (500 s at the default control_dt = 0.5 s)."""
+
+RUDDER_LIMIT_DEG = 35.0
+"""Rudder angle limit of the servo [deg] (:data:`ship_gym.control.actuators.RUDDER_SERVO`)."""
+
+
+class CourseKeepingTask(ShipTask):
+    """N course-keeping episodes (see :class:`CourseKeepingEnv` for the keyword arguments)."""
+
+    def __init__(
+        self,
+        num_envs: int,
+        *,
+        froude_number: float = 0.25,
+        speed_range_mps: tuple[float, float] | None = None,
+        hs_range_m: tuple[float, float] = (3.0, 5.0),
+        tp_range_s: tuple[float, float] = (9.0, 12.0),
+        wave_heading_range_deg: tuple[float, float] = (0.0, 360.0),
+        n_wave_components: int = 40,
+        wave_spreading_s: float | None = None,
+        wave_ramp_time_s: float = 30.0,
+        gm_range_m: tuple[float, float] | None = None,
+        kg_m: float | None = None,
+        initial_heading_error_deg: float = 10.0,
+        rudder_mode: Literal["absolute", "increment"] = "absolute",
+        max_rudder_increment_deg: float = 5.0,
+        physics_dt_s: float = 0.1,
+        control_dt_s: float = 0.5,
+        integrator: Literal["holloway", "rk4"] = "holloway",
+        hull_mesh: Sequence[int] = S175_MESH,
+        capsize_angle_deg: float | None = None,
+        dangerous_roll_deg: float = 25.0,
+        heading_weight: float = 1.0,
+        heading_scale_deg: float = 10.0,
+        rudder_weight: float = 0.1,
+        roll_weight: float = 0.1,
+        roll_scale_deg: float = 10.0,
+        capsize_penalty: float = 100.0,
+        sensor_noise: float = 0.0,
+        wave_preview_m: Sequence[float] = (),
+    ) -> None:
+        if rudder_mode not in ("absolute", "increment"):
+            raise ValueError(f"rudder_mode must be 'absolute' or 'increment', got {rudder_mode!r}")
+        self.rudder_mode = rudder_mode
+        self.max_rudder_increment = math.radians(
+            check_positive("max_rudder_increment_deg", max_rudder_increment_deg, "deg", 70.0)
+        )
+        if not (
+            isinstance(initial_heading_error_deg, int | float)
+            and 0.0 <= initial_heading_error_deg <= 180.0
+        ):
+            raise ValueError(
+                f"initial_heading_error_deg must be in [0, 180] [deg], got "
+                f"{initial_heading_error_deg!r}"
+            )
+        self.initial_heading_error = math.radians(initial_heading_error_deg)
+        self.heading_weight = check_weight("heading_weight", heading_weight)
+        self.heading_scale = math.radians(
+            check_positive("heading_scale_deg", heading_scale_deg, "deg", 180.0)
+        )
+        self.rudder_weight = check_weight("rudder_weight", rudder_weight)
+        self.roll_weight = check_weight("roll_weight", roll_weight)
+        self.roll_scale = math.radians(
+            check_positive("roll_scale_deg", roll_scale_deg, "deg", 90.0)
+        )
+        self.capsize_penalty = check_weight("capsize_penalty", capsize_penalty)
+        self.rudder_limit = math.radians(RUDDER_LIMIT_DEG)
+        if rudder_mode == "absolute":
+            self.action_names = (f"rudder command (-1..1 = ±{RUDDER_LIMIT_DEG:g} deg)",)
+        else:
+            self.action_names = (
+                f"rudder command increment (-1..1 = ±{max_rudder_increment_deg:g} deg per step)",
+            )
+        setup = s175_setup(
+            froude_number=froude_number,
+            physics_dt=physics_dt_s,
+            integrator=integrator,
+            rudder="command",
+            hull_mesh=hull_mesh,
+            kg=kg_m,
+        )
+        sea = SeaSampler(
+            kind="irregular",
+            height_range=hs_range_m,
+            period_range=tp_range_s,
+            heading_range_deg=wave_heading_range_deg,
+            n_components=n_wave_components,
+            spreading_s=wave_spreading_s,
+            ramp_time=wave_ramp_time_s,
+        )
+        super().__init__(
+            num_envs,
+            setup=setup,
+            sea=sea,
+            control_dt=control_dt_s,
+            speed_range=speed_range_mps,
+            gm_range=gm_range_m,
+            capsize_angle_deg=capsize_angle_deg,
+            dangerous_roll_deg=dangerous_roll_deg,
+            sensor_noise=sensor_noise,
+            wave_preview_m=wave_preview_m,
+            extra_observations=(
+                ("heading [rad]", -math.pi, math.pi),
+                ("heading set-point [rad]", -math.pi, math.pi),
+                ("rudder command [rad]", -self.rudder_limit, self.rudder_limit),
+            ),
+        )
+
+    # ------------------------------------------------------------------ hooks
+    def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
+        e = float(rng.uniform(-self.initial_heading_error, self.initial_heading_error))
+        self.heading_setpoint[i] = e  # the ship starts heading north (ψ = 0)
+        return {"heading_setpoint_deg": math.degrees(e)}
+
+    def _apply_actions(self, actions: NDArray) -> None:
+        cmd = self.commands["rudder_command"]
+        if self.rudder_mode == "absolute":
+            cmd[:] = actions[:, 0] * self.rudder_limit
+        else:
+            np.clip(
+                cmd + actions[:, 0] * self.max_rudder_increment,
+                -self.rudder_limit,
+                self.rudder_limit,
+                out=cmd,
+            )
+
+    def _extra_observations(self) -> NDArray:
+        psi = self.sim.eta[:, 5]
+        return np.column_stack(
+            [
+                (psi + math.pi) % (2.0 * math.pi) - math.pi,
+                (self.heading_setpoint + math.pi) % (2.0 * math.pi) - math.pi,
+                self.commands["rudder_command"],
+            ]
+        )
+
+    def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
+        e = self.heading_error()
+        delta = self.rudder_angle()
+        return {
+            "heading": -self.heading_weight * (e / self.heading_scale) ** 2,
+            "rudder": -self.rudder_weight * (delta / self.rudder_limit) ** 2,
+            "roll": -self.roll_weight * stats.mean_square_roll / self.roll_scale**2,
+            "capsize": -self.capsize_penalty * stats.newly_capsized,
+        }
+
+    def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
+        return {"heading_error_deg": np.degrees(self.heading_error())}
+
+
+class CourseKeepingEnv(TaskEnv):
+    """Keep the S175 container ship on a heading in irregular seas with its rudder.
+
+    ## Description
+
+    The ITTC S175 container ship (Lpp 175 m, B 25.4 m, T 9.5 m, GM ≈ 1.0 m) sails at its service
+    speed (Fn = 0.25, 10.36 m/s) in long-crested JONSWAP seas from a random direction. Its motions
+    are simulated in 6 DOF (:mod:`ship_gym.dynamics.batch`): nonlinear Froude–Krylov and
+    hydrostatic forces on the instantaneous wetted hull, radiation memory (state-space fit of
+    the Cummins kernel), linear diffraction, Ikeda viscous roll damping, Holtrop resistance and
+    a B-series propeller at the self-propulsion rpm, hull manoeuvring forces, and a rudder
+    behind an IMO-minimum steering gear (±35°, 2.32 °/s). The agent commands the rudder to hold
+    the heading set-point while keeping rudder effort and roll low. A capsize ends the episode.
+
+    ## Action Space
+
+    ``Box(-1, 1, (1,), float32)``: with ``rudder_mode="absolute"`` the rudder angle command
+    δ_c = a · 35° (positive turns the ship to starboard); with ``"increment"`` the command
+    changes by a · ``max_rudder_increment_deg`` per control step (clipped at ±35°). The servo
+    follows the command at ≤ 2.32 °/s.
+
+    ## Observation Space
+
+    ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
+
+    | # | name | unit | bound |
+    |---|---|---|---|
+    | 0 | roll φ | rad | ±π |
+    | 1 | pitch θ | rad | ±π/2 |
+    | 2 | heave (from the calm-water equilibrium, down positive) | m | ±30 |
+    | 3–5 | roll rate p, pitch rate q, heave velocity w (body) | rad/s, rad/s, m/s | 5, 5, 30 |
+    | 6 | yaw rate r | rad/s | ±2 |
+    | 7–8 | surge speed u, sway velocity v | m/s | ±30 |
+    | 9 | heading error wrap(ψ_ref − ψ) | rad | ±π |
+    | 10–11 | cos β, sin β of the mean relative wave heading β = χ − ψ | - | ±1 |
+    | 12 | rudder angle (servo) | rad | ±π/2 |
+    | 13 | shaft speed | rev/s | ±20 |
+    | 14 | heading ψ (wrapped) | rad | ±π |
+    | 15 | heading set-point ψ_ref (wrapped) | rad | ±π |
+    | 16 | rudder command | rad | ±0.611 |
+    | 17… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
+
+    ``sensor_noise`` adds Gaussian noise of ``sensor_noise`` × the accuracies of
+    :data:`ship_gym.envs.ship_task.SENSOR_NOISE_STD` (0.1 m on the preview).
+
+    ## Rewards
+
+    r = Σ of the weighted terms, each in ``info["reward_<term>"]``:
+
+    * ``heading`` = −heading_weight · (e/heading_scale)², e the wrapped heading error;
+    * ``rudder`` = −rudder_weight · (δ/35°)², δ the servo rudder angle;
+    * ``roll`` = −roll_weight · mean(φ²)/roll_scale² over the physics steps of the control step;
+    * ``capsize`` = −capsize_penalty in the step the ship capsizes.
+
+    ``info["cost"]`` (Safe RL) is the fraction of the physics steps with |φ| above
+    ``dangerous_roll_deg``.
+
+    ## Starting State
+
+    Free-floating equilibrium, heading north (ψ = 0) at the initial speed; heading set-point
+    uniform in ±``initial_heading_error_deg``. Per episode, from the reset seed: Hs, Tp and the
+    relative wave heading β (uniform in the ranges), the wave components (random phases and
+    jittered frequencies), optionally the speed and the GM of the loading. The waves ramp up over
+    ``wave_ramp_time_s`` (Matusiak 2003, eq. 12). ``reset`` info: ``wave_height_m`` (Hs),
+    ``wave_period_s`` (Tp), ``wave_heading_deg`` (β), ``heading_setpoint_deg``,
+    ``initial_speed_mps``, ``gm_m``, ``capsize_angle_deg``.
+
+    ## Episode End
+
+    Terminated when |φ| exceeds the capsize angle at any physics step (default: the angle of
+    vanishing stability of the episode's loading from its GZ curve, 66.2° for the nominal S175;
+    ``capsize_angle_deg`` overrides it) or when the integration diverges (``info["diverged"]``).
+    Truncated by the time limit (``MAX_EPISODE_STEPS`` = 1000 control steps = 500 s).
+
+    ## Arguments
+
+    | kwarg | default | unit | meaning |
+    |---|---|---|---|
+    | froude_number | 0.25 | - | reference speed U = Fn √(g L) (radiation, diffraction, propeller) |
+    | speed_range_mps | None | m/s | initial speed range (self-propulsion rpm); keep near U |
+    | hs_range_m | (3, 5) | m | significant wave height range |
+    | tp_range_s | (9, 12) | s | peak period range |
+    | wave_heading_range_deg | (0, 360) | deg | relative wave heading β (0 following, 180 head) |
+    | n_wave_components | 40 | - | components of the irregular sea |
+    | wave_spreading_s | None | - | cos-2s spreading exponent (None: long-crested) |
+    | wave_ramp_time_s | 30 | s | start-up ramp of the waves |
+    | gm_range_m | None | m | GM range of the loading (per episode; None: nominal) |
+    | kg_m | None | m | KG of the nominal loading (None: 9.55 m) |
+    | initial_heading_error_deg | 10 | deg | set-point range at reset |
+    | rudder_mode | "absolute" | - | "absolute" angle or "increment" per step |
+    | max_rudder_increment_deg | 5 | deg | increment at a = ±1 (increment mode) |
+    | physics_dt_s | 0.1 | s | physics time step |
+    | control_dt_s | 0.5 | s | control step (integer multiple of physics_dt_s) |
+    | integrator | "holloway" | - | "holloway" (1 evaluation/step) or "rk4" |
+    | hull_mesh | (60, 12, 6, 4) | - | S175 mesh (sections, panels below/above water, deck) |
+    | capsize_angle_deg | None | deg | capsize roll angle (None: vanishing angle of the loading) |
+    | dangerous_roll_deg | 25 | deg | roll angle of the Safe-RL cost |
+    | heading_weight | 1.0 | - | weight of the heading term |
+    | heading_scale_deg | 10 | deg | heading error scale |
+    | rudder_weight | 0.1 | - | weight of the rudder term |
+    | roll_weight | 0.1 | - | weight of the roll term |
+    | roll_scale_deg | 10 | deg | roll scale |
+    | capsize_penalty | 100 | - | penalty paid at capsize |
+    | sensor_noise | 0 | - | multiplier of the sensor accuracies |
+    | wave_preview_m | () | m | distances ahead of O of the elevation preview |
+
+    ## Version History
+
+    * v0: initial version.
+    """
+
+    task_class = CourseKeepingTask
+
+
+class CourseKeepingVectorEnv(TaskVectorEnv):
+    """N episodes of :class:`CourseKeepingEnv` in one BatchSimulator (same keyword arguments).
+
+    Episode i reset with ``seed=s`` is the single environment reset with ``seed=s + i``.
+    """
+
+    task_class = CourseKeepingTask

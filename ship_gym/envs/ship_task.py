@@ -1,0 +1,979 @@
+"""Common machinery of the 6-DOF ship tasks: N episodes of the S175 in one BatchSimulator.
+
+A :class:`ShipTask` is a :class:`ship_gym.envs.base.BatchedTask` whose N episodes are N ships of
+one :class:`ship_gym.dynamics.batch.BatchSimulator` (one hull, one force-model setup, each ship
+in its own sea). It does what every ship task needs, on arrays over the N episodes (no per-ship
+Python loop in :meth:`ShipTask.step`):
+
+* **build once, cheaply** — the simulator of a (setup, N, wave-component count) is built once
+  per process and deep-copied for each task instance (:func:`prototype_simulator`), so making
+  many environments (tests, vector envs) costs milliseconds after the first;
+* **time steps** — ``control_dt`` must be an integer multiple k of the physics ``dt``
+  (ValueError otherwise); one control step is k physics steps with the commands held;
+* **per-episode sea** (:class:`SeaSampler`) — irregular (JONSWAP, Hs/Tp ranges) or regular
+  (height/period ranges, random phase) at a random relative heading β, with Matusiak's start-up
+  ramp (eq. 12, :func:`ship_gym.waves.wave_field.ramp_factor`) so episodes start calmly;
+* **speed randomisation** — the initial surge speed and the shaft speed (the calm-water
+  self-propulsion point of that speed) are per episode. The reference speed U of the radiation
+  memory (ν − U), of the diffraction encounter frequency and of the autopilot gains is the build
+  speed, shared by the batch: a rebuild per episode would cost ≈ 0.2–0.6 s, so the range should
+  stay narrow around it (say ±15 %);
+* **loading (GM) randomisation** — per-ship centre of gravity
+  (:meth:`BatchSimulator.set_centre_of_gravity`): KG = KM − GM with KM of the upright hull. The
+  nonlinear Froude–Krylov/hydrostatic force integrates the pressure over the hull panels, so the
+  restoring moment (GZ curve) follows G exactly; the inertia about G, the Ikeda roll damping and
+  the controller gains keep the values of the nominal loading;
+* **capsize criterion** — |φ| > the angle of vanishing stability of the episode's loading (from
+  the calm-water GZ curve at free sinkage and trim, :func:`ship_gym.hull.righting_arm`, shifted
+  by ΔKG sin φ for a moved G), or a fixed angle given as a keyword argument; checked at every
+  physics step. A ship whose integration diverges (BatchSimulator freezes it) is also
+  terminated, as a capsize, with ``info["diverged"]``; stepping it again never raises;
+* **Safe-RL cost** — the fraction of the physics steps of a control step with |φ| above the
+  dangerous roll angle (0 … 1);
+* **observations** — float32, names with units (:attr:`ShipTask.observation_names`), clipped to
+  the documented bounds of the space, optional Gaussian sensor noise (from the episode's
+  generator) and optional wave preview (incident elevation at points ahead of O along the
+  heading, from the wave field);
+* **rendering** — :meth:`ShipTask.snapshot` (profile/section elevations from the wave field and a
+  ring buffer of roll, pitch, heave and heading).
+
+Subclasses (:mod:`ship_gym.envs.course_keeping`, :mod:`ship_gym.envs.capsize_avoidance`) define
+the actions → commands mapping, the extra observations and the reward terms.
+
+Conventions (:mod:`ship_gym.conventions`): η = (x, y, z, φ, θ, ψ) of O in NED (z down), ν =
+(u, v, w, p, q, r) in the body frame; the ship starts heading north (ψ = 0) and the waves travel
+to χ = β (β = 0 following seas, π head seas).
+"""
+
+from __future__ import annotations
+
+import abc
+import copy
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import TYPE_CHECKING, Any, Literal
+
+import numpy as np
+from gymnasium import spaces
+from numpy.typing import NDArray
+
+from ship_gym.conventions import GRAVITY
+from ship_gym.envs.base import BatchedTask, TaskStep
+
+if TYPE_CHECKING:
+    from ship_gym.dynamics.batch import BatchSimulator
+    from ship_gym.dynamics.ship import ShipSetup
+    from ship_gym.envs.rendering import RenderSnapshot
+    from ship_gym.waves.wave_field import WaveField
+
+__all__ = [
+    "S175_MESH",
+    "SENSOR_NOISE_STD",
+    "LoadingCondition",
+    "SeaSampler",
+    "ShipTask",
+    "StepStatistics",
+    "check_positive",
+    "check_range",
+    "check_weight",
+    "loading_condition",
+    "prototype_simulator",
+    "s175_setup",
+]
+
+S175_MESH: tuple[int, int, int, int] = (60, 12, 6, 4)
+"""Default S175 mesh resolution (n_sections, n_below, n_above, n_deck): 2400 panels."""
+
+_TWO_PI = 2.0 * math.pi
+
+
+# =============================================================================================
+# per-process caches
+# =============================================================================================
+_PROTOTYPES: dict[tuple[str, int, int], BatchSimulator] = {}
+
+
+def prototype_simulator(setup: ShipSetup, num_ships: int, n_components: int) -> BatchSimulator:
+    """A fresh BatchSimulator of ``num_ships`` calm-water ships of ``setup`` (cached build).
+
+    The first call for a (setup, N, component count) builds it
+    (:func:`ship_gym.dynamics.batch.build_batch_simulator`: hull, database, state-space fit,
+    Nomoto identification of the autopilot…, 0.2–1 s); later calls return a deep copy of the
+    cached one (milliseconds).
+
+    Parameters
+    ----------
+    setup : ShipSetup
+        Ship, models and numerics.
+    num_ships : int
+        Batch size N.
+    n_components : int
+        Padded wave-component count (room for every sea given at reset).
+    """
+    from ship_gym.dynamics.batch import build_batch_simulator
+
+    key = (repr(setup), int(num_ships), int(n_components))
+    proto = _PROTOTYPES.get(key)
+    if proto is None:
+        proto = build_batch_simulator(
+            setup, [None] * int(num_ships), max_components=int(n_components)
+        )
+        _PROTOTYPES[key] = proto
+    return copy.deepcopy(proto)
+
+
+@dataclass(frozen=True)
+class LoadingCondition:
+    """Stability of the nominal loading condition of a hull (calm water, free sinkage and trim).
+
+    Attributes
+    ----------
+    kg : float
+        Height of G above the keel [m].
+    gm : float
+        Transverse metacentric height GM of the upright floating hull [m].
+    heel_deg : numpy.ndarray
+        Heel angles of the GZ table [deg] (0 … 90).
+    gz : numpy.ndarray
+        Righting arms there [m].
+    vanishing_angle_deg : float
+        Angle of vanishing stability [deg] (90 if GZ stays positive up to 90°).
+    draught, heave : float
+        Design draught [m] and the equilibrium sinkage of O [m] (z down).
+    """
+
+    kg: float
+    gm: float
+    heel_deg: NDArray
+    gz: NDArray
+    vanishing_angle_deg: float
+    draught: float
+    heave: float
+
+    def vanishing_angles(self, delta_kg: NDArray) -> NDArray:
+        """Angle of vanishing stability [rad] after raising G by ``delta_kg`` [m].
+
+        GZ(φ) − ΔKG sin φ on the cubic interpolant of the GZ table (exact for a vertical shift
+        of G at the same free sinkage and trim); the first down-crossing, 90° if none.
+        """
+        from scipy.interpolate import CubicSpline
+
+        d = np.atleast_1d(np.asarray(delta_kg, float))
+        out = np.full(d.shape, math.radians(self.vanishing_angle_deg))
+        moved = d != 0.0
+        if moved.any():
+            fine = np.linspace(0.0, 90.0, 1801)
+            gz = CubicSpline(self.heel_deg, self.gz)(fine)[None, :] - d[moved, None] * np.sin(
+                np.radians(fine)
+            )
+            for r, row in zip(np.flatnonzero(moved), gz, strict=True):
+                pos = np.flatnonzero(row[1:] > 0.0)
+                start = int(pos[0]) + 1 if pos.size else 1  # first positive GZ after 0°
+                down = np.flatnonzero((row[start:-1] > 0.0) & (row[start + 1 :] <= 0.0))
+                if down.size == 0:
+                    out[r] = math.pi / 2 if pos.size else math.radians(fine[1])
+                    continue
+                i = start + int(down[0])
+                x = fine[i] + (fine[i + 1] - fine[i]) * row[i] / (row[i] - row[i + 1])
+                out[r] = math.radians(x)
+        return out
+
+
+@lru_cache(maxsize=16)
+def _loading_condition(hull_name: str, overrides: tuple) -> LoadingCondition:
+    from ship_gym.hull import equilibrium, hydrostatics, load_hull, righting_arm
+
+    hull = load_hull(hull_name, **dict(overrides))
+    eq = equilibrium(hull)
+    hs = hydrostatics(hull, eq.heave, 0.0, eq.trim)
+    heels = np.arange(0.0, 90.0 + 1e-9, 5.0)
+    curve = righting_arm(hull, heels)
+    vanishing = curve.vanishing_angle_deg
+    if not math.isfinite(vanishing):
+        vanishing = 90.0
+    return LoadingCondition(
+        kg=float(hull.kg),
+        gm=float(hs.gmt),
+        heel_deg=curve.heel_deg,
+        gz=curve.gz,
+        vanishing_angle_deg=float(min(vanishing, 90.0)),
+        draught=float(hull.particulars.draught),
+        heave=float(eq.heave),
+    )
+
+
+@lru_cache(maxsize=16)
+def _propeller(hull_name: str, overrides: tuple) -> Any:
+    from ship_gym.forces.propeller import design_propeller_for
+    from ship_gym.hull import load_hull
+
+    return design_propeller_for(load_hull(hull_name, **dict(overrides)))
+
+
+def loading_condition(setup: ShipSetup) -> LoadingCondition:
+    """GZ table, GM and vanishing angle of the setup's hull and loading (cached per process)."""
+    return _loading_condition(setup.hull, tuple(sorted(setup.hull_overrides.items())))
+
+
+# =============================================================================================
+# sea sampling
+# =============================================================================================
+def check_range(name: str, value: Any, *, low: float, high: float, unit: str) -> tuple:
+    """A (min, max) pair of floats with low ≤ min ≤ max ≤ high, else ValueError."""
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a (min, max) pair [{unit}], got {value!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and low <= lo <= hi <= high):
+        raise ValueError(
+            f"{name} must satisfy {low} <= min <= max <= {high} [{unit}], got {value!r}"
+        )
+    return lo, hi
+
+
+@dataclass(frozen=True)
+class SeaSampler:
+    """How the sea of an episode is drawn from its generator.
+
+    Draws, in this order: height, period, relative heading, then (regular) the phase or
+    (irregular) the components (:meth:`ship_gym.waves.wave_field.WaveField.from_sea_state`).
+
+    Parameters
+    ----------
+    kind : {"irregular", "regular"}
+        JONSWAP irregular sea or a regular wave.
+    height_range : tuple of float
+        Significant height Hs (irregular) or wave height H (regular) [m], uniform.
+    period_range : tuple of float
+        Peak period Tp (irregular) or period T (regular) [s], uniform.
+    heading_range_deg : tuple of float
+        Relative wave heading β [deg] (0 following seas, 180 head seas), uniform.
+    n_components : int
+        Wave components of an irregular sea.
+    gamma : float
+        JONSWAP peak enhancement γ [-].
+    spreading_s : float or None
+        Cos-2s spreading exponent (None: long-crested).
+    ramp_time : float
+        Start-up ramp T_f [s] (Matusiak eq. 12).
+    """
+
+    kind: Literal["irregular", "regular"] = "irregular"
+    height_range: tuple[float, float] = (3.0, 5.0)
+    period_range: tuple[float, float] = (9.0, 12.0)
+    heading_range_deg: tuple[float, float] = (0.0, 360.0)
+    n_components: int = 40
+    gamma: float = 3.3
+    spreading_s: float | None = None
+    ramp_time: float = 30.0
+
+    def __post_init__(self) -> None:
+        if self.kind not in ("irregular", "regular"):
+            raise ValueError(f"sea kind must be 'irregular' or 'regular', got {self.kind!r}")
+        h = check_range("wave height range", self.height_range, low=0.0, high=30.0, unit="m")
+        t = check_range("wave period range", self.period_range, low=1.0, high=40.0, unit="s")
+        b = check_range(
+            "wave heading range", self.heading_range_deg, low=-360.0, high=720.0, unit="deg"
+        )
+        object.__setattr__(self, "height_range", h)
+        object.__setattr__(self, "period_range", t)
+        object.__setattr__(self, "heading_range_deg", b)
+        n = self.n_components
+        if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= 1000:
+            raise ValueError(f"n_components must be an integer in 1…1000, got {n!r}")
+        if not (math.isfinite(self.gamma) and self.gamma >= 1.0):
+            raise ValueError(f"JONSWAP gamma must be >= 1, got {self.gamma!r}")
+        if self.spreading_s is not None and not (
+            math.isfinite(self.spreading_s) and self.spreading_s >= 0.0
+        ):
+            raise ValueError(f"spreading_s must be None or >= 0, got {self.spreading_s!r}")
+        if not (math.isfinite(self.ramp_time) and self.ramp_time >= 0.0):
+            raise ValueError(f"wave ramp time must be >= 0 [s], got {self.ramp_time!r}")
+        if self.kind == "regular":
+            from ship_gym.waves.sea_state import MAX_STEEPNESS
+
+            shortest = GRAVITY * t[0] ** 2 / _TWO_PI
+            if h[1] / shortest > MAX_STEEPNESS:
+                raise ValueError(
+                    f"regular waves up to H = {h[1]} m at T = {t[0]} s (λ = {shortest:.1f} m) "
+                    f"exceed the breaking steepness H/λ = {MAX_STEEPNESS:.3f}"
+                )
+
+    @property
+    def max_components(self) -> int:
+        """Components of the largest sea drawn (the batch's padded count)."""
+        return 1 if self.kind == "regular" else int(self.n_components)
+
+    def sample(self, rng: np.random.Generator) -> tuple[WaveField, dict[str, float]]:
+        """One episode's wave field and its parameters (``wave_height_m``, ``wave_period_s``,
+        ``wave_heading_deg``)."""
+        from ship_gym.dynamics.ship import wave_field_for
+        from ship_gym.waves.sea_state import IrregularSea, RegularWave
+
+        height = float(rng.uniform(*self.height_range))
+        period = float(rng.uniform(*self.period_range))
+        heading_deg = float(rng.uniform(*self.heading_range_deg))
+        beta = math.radians(heading_deg)
+        if self.kind == "regular":
+            phase = float(rng.uniform(0.0, _TWO_PI))
+            sea: Any = RegularWave(
+                height=height, period=period, phase=phase, ramp_time=self.ramp_time
+            )
+        else:
+            sea = IrregularSea(
+                hs=height,
+                tp=period,
+                gamma=self.gamma,
+                spreading_s=self.spreading_s,
+                n_components=int(self.n_components),
+                ramp_time=self.ramp_time,
+            )
+        wave_field = wave_field_for(sea, beta, rng)
+        info = {
+            "wave_height_m": height,
+            "wave_period_s": period,
+            "wave_heading_deg": (heading_deg + 180.0) % 360.0 - 180.0,
+        }
+        return wave_field, info
+
+
+# =============================================================================================
+# sensor noise and observation bounds
+# =============================================================================================
+SENSOR_NOISE_STD: dict[str, float] = {
+    "roll [rad]": math.radians(0.2),
+    "pitch [rad]": math.radians(0.2),
+    "heave [m]": 0.05,
+    "roll rate [rad/s]": math.radians(0.1),
+    "pitch rate [rad/s]": math.radians(0.1),
+    "heave velocity [m/s]": 0.02,
+    "yaw rate [rad/s]": math.radians(0.05),
+    "surge speed [m/s]": 0.05,
+    "sway velocity [m/s]": 0.05,
+    "heading error [rad]": math.radians(0.5),
+}
+"""Standard deviation of each sensor at ``sensor_noise=1`` (typical marine motion reference
+unit, gyro compass and log accuracy); unlisted entries (commands, actuator feedback, wave
+direction, preview) are noise-free except the preview, which takes 0.1 m."""
+
+_PREVIEW_NOISE_STD = 0.1  # [m] wave-radar elevation accuracy at sensor_noise = 1
+
+_BASE_OBSERVATIONS: tuple[tuple[str, float], ...] = (
+    # name, bound (symmetric) — every entry is clipped to ±bound
+    ("roll [rad]", math.pi),
+    ("pitch [rad]", math.pi / 2),
+    ("heave [m]", 30.0),
+    ("roll rate [rad/s]", 5.0),
+    ("pitch rate [rad/s]", 5.0),
+    ("heave velocity [m/s]", 30.0),
+    ("yaw rate [rad/s]", 2.0),
+    ("surge speed [m/s]", 30.0),
+    ("sway velocity [m/s]", 30.0),
+    ("heading error [rad]", math.pi),
+    ("relative wave heading cos [-]", 1.0),
+    ("relative wave heading sin [-]", 1.0),
+)
+
+
+@dataclass
+class StepStatistics:
+    """Roll statistics of the physics steps of one control step (arrays over N episodes).
+
+    Attributes
+    ----------
+    max_abs_roll : NDArray
+        Largest |φ| [rad].
+    mean_square_roll : NDArray
+        Mean of φ² [rad²].
+    danger_fraction : NDArray
+        Fraction of the physics steps with |φ| above the dangerous roll angle [-].
+    capsized : NDArray
+        |φ| exceeded the capsize angle, or the ship diverged (bool).
+    diverged : NDArray
+        The integration diverged (bool).
+    newly_capsized : NDArray
+        Capsized in this control step (bool; the capsize penalty is paid once).
+    position_before : NDArray
+        (N, 2) north/east position of O at the start of the control step [m].
+    """
+
+    max_abs_roll: NDArray
+    mean_square_roll: NDArray
+    danger_fraction: NDArray
+    capsized: NDArray
+    diverged: NDArray
+    newly_capsized: NDArray
+    position_before: NDArray = field(default_factory=lambda: np.zeros((0, 2)))
+
+
+# =============================================================================================
+# the common task
+# =============================================================================================
+class ShipTask(BatchedTask, abc.ABC):
+    """N episodes of the S175 in waves, stepped together (module docstring).
+
+    Subclasses call ``super().__init__`` with the setup and options below, then implement
+    :meth:`_apply_actions`, :meth:`_reward_terms`, and optionally :meth:`_extra_observations`
+    (with :attr:`extra_observations`), :meth:`_reset_task`, :meth:`_task_info`,
+    :meth:`_action_labels`.
+
+    Parameters
+    ----------
+    num_envs : int
+        Number of episodes N.
+    setup : ShipSetup
+        Hull, models, integrator and physics dt (``setup.speed`` is the reference speed).
+    sea : SeaSampler
+        Per-episode sea.
+    control_dt : float
+        Control step [s], an integer multiple of ``setup.dt``.
+    speed_range : tuple of float or None
+        Initial speed range [m/s] (None: ``setup.speed``).
+    gm_range : tuple of float or None
+        GM range [m] of the episodes' loading (None: the nominal loading).
+    capsize_angle_deg : float or None
+        Fixed capsize roll angle [deg] (None: the vanishing angle of each episode's loading).
+    dangerous_roll_deg : float
+        Roll angle above which the cost accrues [deg].
+    sensor_noise : float
+        Multiplier of :data:`SENSOR_NOISE_STD` [-] (0: exact observations).
+    wave_preview_m : sequence of float
+        Distances ahead of O along the heading where the incident elevation is observed [m]
+        (empty: no preview).
+    history_length : int
+        Samples of the rendering history (one per control step).
+    extra_observations : sequence of (name, low, high)
+        The subclass's observation entries (appended after the common ones).
+    """
+
+    setup: ShipSetup
+    sim: BatchSimulator
+
+    def __init__(
+        self,
+        num_envs: int,
+        *,
+        setup: ShipSetup,
+        sea: SeaSampler,
+        control_dt: float,
+        speed_range: tuple[float, float] | None = None,
+        gm_range: tuple[float, float] | None = None,
+        capsize_angle_deg: float | None = None,
+        dangerous_roll_deg: float = 30.0,
+        sensor_noise: float = 0.0,
+        wave_preview_m: Sequence[float] = (),
+        history_length: int = 240,
+        extra_observations: Sequence[tuple[str, float, float]] = (),
+    ) -> None:
+        super().__init__(num_envs)
+        n = self.num_envs
+        self.setup = setup
+        self.sea = sea
+        # --- time steps
+        dt = float(setup.dt)
+        if not (isinstance(control_dt, int | float) and math.isfinite(control_dt)):
+            raise ValueError(f"control_dt must be a finite time step [s], got {control_dt!r}")
+        k = round(control_dt / dt)
+        if k < 1 or abs(k * dt - control_dt) > 1e-9 * max(1.0, control_dt):
+            raise ValueError(
+                f"control_dt = {control_dt!r} s must be a positive integer multiple of the "
+                f"physics dt = {dt!r} s"
+            )
+        self.substeps = int(k)
+        self.control_dt = float(k * dt)
+        # --- options
+        lc = loading_condition(setup)
+        self.loading = lc
+        if speed_range is not None:
+            speed_range = check_range("speed_range", speed_range, low=0.1, high=30.0, unit="m/s")
+            if not setup.propulsion:
+                raise ValueError("speed_range needs a setup with propulsion (a shaft speed)")
+        self.speed_range = speed_range
+        if gm_range is not None:
+            gm_range = check_range("gm_range", gm_range, low=0.05, high=10.0, unit="m")
+        self.gm_range = gm_range
+        if capsize_angle_deg is not None and not (
+            isinstance(capsize_angle_deg, int | float) and 0.0 < capsize_angle_deg <= 180.0
+        ):
+            raise ValueError(
+                f"capsize_angle_deg must be in (0, 180] [deg] or None, got {capsize_angle_deg!r}"
+            )
+        self.capsize_angle_deg = capsize_angle_deg
+        if not (isinstance(dangerous_roll_deg, int | float) and 0.0 < dangerous_roll_deg < 90.0):
+            raise ValueError(
+                f"dangerous_roll_deg must be in (0, 90) [deg], got {dangerous_roll_deg!r}"
+            )
+        self.dangerous_roll = math.radians(dangerous_roll_deg)
+        if not (isinstance(sensor_noise, int | float) and 0.0 <= sensor_noise <= 100.0):
+            raise ValueError(f"sensor_noise must be in [0, 100] [-], got {sensor_noise!r}")
+        self.sensor_noise = float(sensor_noise)
+        try:
+            preview = np.asarray(wave_preview_m, dtype=float).reshape(-1)
+        except (TypeError, ValueError):
+            raise ValueError(
+                f"wave_preview_m must be a sequence of distances [m], got {wave_preview_m!r}"
+            ) from None
+        if not np.all(np.isfinite(preview)) or np.any(np.abs(preview) > 5000.0):
+            raise ValueError(f"wave_preview_m must be finite distances within ±5 km, got {preview}")
+        self.wave_preview_m = preview
+        if (
+            isinstance(history_length, bool)
+            or not isinstance(history_length, int)
+            or (history_length < 2)
+        ):
+            raise ValueError(f"history_length must be an integer >= 2, got {history_length!r}")
+        # --- simulator (cached build, deep copy)
+        self.sim = prototype_simulator(setup, n, sea.max_components)
+        self._z_eq = float(self.sim.initial_eta[2])
+        self._propeller = self._find_propeller()
+        self._nominal_shaft_speed = (
+            float(self._propeller.shaft_speed_for(setup.speed)) if self._propeller else 0.0
+        )
+        self._rudder_state = self._state_index("rudder")
+        self.commands: dict[str, NDArray] = {}
+        if setup.propulsion:
+            self.commands["shaft_speed"] = np.full(n, self._nominal_shaft_speed)
+        if setup.rudder == "command":
+            self.commands["rudder_command"] = np.zeros(n)
+        if setup.rudder == "autopilot":
+            self.commands["heading"] = np.zeros(n)
+        # --- observation layout
+        names = [name for name, _ in _BASE_OBSERVATIONS]
+        bounds = [b for _, b in _BASE_OBSERVATIONS]
+        low = [-b for b in bounds]
+        if self._rudder_state is not None:
+            names.append("rudder angle [rad]")
+            low.append(-math.pi / 2)
+            bounds.append(math.pi / 2)
+        if setup.propulsion:
+            names.append("shaft speed [rev/s]")
+            low.append(-20.0)
+            bounds.append(20.0)
+        self._n_base = len(names)
+        for name, lo, hi in extra_observations:
+            names.append(name)
+            low.append(float(lo))
+            bounds.append(float(hi))
+        for d in preview:
+            names.append(f"wave elevation {d:g} m ahead [m]")
+            low.append(-30.0)
+            bounds.append(30.0)
+        self.observation_names = tuple(names)
+        self._obs_low = np.asarray(low, dtype=np.float32)
+        self._obs_high = np.asarray(bounds, dtype=np.float32)
+        self.observation_space = spaces.Box(self._obs_low, self._obs_high, dtype=np.float32)
+        noise = [SENSOR_NOISE_STD.get(name, 0.0) for name in names]
+        noise[len(names) - preview.size :] = [_PREVIEW_NOISE_STD] * preview.size
+        self._noise_std = self.sensor_noise * np.asarray(noise)
+        # --- per-episode state
+        self.heading_setpoint = np.zeros(n)  # ψ_ref [rad]
+        self.wave_direction = np.zeros(n)  # mean χ of the episode's sea [rad]
+        self.capsize_angle = np.full(n, math.radians(capsize_angle_deg or lc.vanishing_angle_deg))
+        self.initial_speed = np.full(n, float(setup.speed))
+        self.gm = np.full(n, lc.gm)
+        self.episode_steps = np.zeros(n, dtype=np.int64)
+        self.capsized = np.zeros(n, dtype=bool)
+        self._rngs: list[np.random.Generator | None] = [None] * n
+        self._reset_infos: list[dict[str, float]] = [{} for _ in range(n)]
+        self._obs = np.zeros((n, len(names)), dtype=np.float32)
+        self._last_stats: StepStatistics | None = None
+        h = int(history_length)
+        self._hist_t = np.full((n, h), np.nan)
+        self._hist = np.full((n, 4, h), np.nan)  # roll, pitch, heave, heading
+        self.action_space = spaces.Box(-1.0, 1.0, (len(self.action_names),), dtype=np.float32)
+
+    # ------------------------------------------------------------------ simulator helpers
+    def _find_propeller(self) -> Any:
+        """The setup's propeller (same design as the simulator's; cached per hull)."""
+        if not self.setup.propulsion:
+            return None
+        return _propeller(self.setup.hull, tuple(sorted(self.setup.hull_overrides.items())))
+
+    def _state_index(self, name: str) -> int | None:
+        """Column in ``sim.z`` of the first state of the force model ``name`` (servo angle)."""
+        offset = 0
+        for f in self.sim.forces:
+            if f.name == name and int(f.n_states) > 0:
+                return offset
+            offset += int(f.n_states)
+        return None
+
+    def rudder_angle(self) -> NDArray:
+        """(N,) servo rudder angle δ [rad] (zeros without a rudder)."""
+        if self._rudder_state is None:
+            return np.zeros(self.num_envs)
+        return self.sim.z[:, self._rudder_state].copy()
+
+    def shaft_speed_for(self, speed: NDArray) -> NDArray:
+        """Calm-water self-propulsion shaft speed [rev/s] at speeds [m/s] (propeller model)."""
+        return np.array([self._propeller.shaft_speed_for(float(u)) for u in np.atleast_1d(speed)])
+
+    # ------------------------------------------------------------------ subclass hooks
+    @abc.abstractmethod
+    def _apply_actions(self, actions: NDArray) -> None:
+        """Turn (N, n_act) actions in [-1, 1] into :attr:`commands` (arrays over N)."""
+
+    @abc.abstractmethod
+    def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
+        """Weighted reward terms (N,) of the control step just taken."""
+
+    def _extra_observations(self) -> NDArray:
+        """(N, n_extra) task observations (in the order of ``extra_observations``)."""
+        return np.zeros((self.num_envs, 0))
+
+    def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
+        """Draw the task's own initial conditions of episode ``i`` (after the sea, speed and
+        loading); return its reset info."""
+        return {}
+
+    def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
+        """Extra per-episode step info (N,)."""
+        return {}
+
+    def _action_labels(self, i: int) -> dict[str, float]:
+        """Current physical commands of episode ``i`` for rendering (label with unit → value)."""
+        out: dict[str, float] = {}
+        if self._rudder_state is not None:
+            out["rudder [deg]"] = math.degrees(float(self.sim.z[i, self._rudder_state]))
+        if "shaft_speed" in self.commands:
+            out["shaft [rpm]"] = 60.0 * float(self.commands["shaft_speed"][i])
+        return out
+
+    # ------------------------------------------------------------------ reset
+    def reset_episodes(
+        self,
+        ids: NDArray[np.int64],
+        rngs: Sequence[np.random.Generator],
+        options: Mapping[str, Any] | None,
+    ) -> None:
+        ids = np.asarray(ids, dtype=np.int64).reshape(-1)
+        if len(rngs) != ids.size:
+            raise ValueError(f"need one generator per episode id: {len(rngs)} for {ids.size}")
+        if ids.size == 0:
+            return
+        lc = self.loading
+        fields = []
+        speeds = np.empty(ids.size)
+        gms = np.empty(ids.size)
+        for k, (i, rng) in enumerate(zip(ids, rngs, strict=True)):
+            wave_field, info = self.sea.sample(rng)
+            fields.append(wave_field)
+            speeds[k] = (
+                float(rng.uniform(*self.speed_range)) if self.speed_range else self.setup.speed
+            )
+            gms[k] = float(rng.uniform(*self.gm_range)) if self.gm_range else lc.gm
+            self.wave_direction[i] = math.radians(info["wave_heading_deg"])
+            self._rngs[int(i)] = rng
+            self._reset_infos[int(i)] = info
+        # loading: G raised by ΔKG = GM_nominal − GM
+        delta_kg = lc.gm - gms
+        if self.gm_range is not None:
+            cog = np.tile(np.asarray(self.sim.hull.mass.cog, float), (ids.size, 1))
+            cog[:, 2] -= delta_kg
+            self.sim.set_centre_of_gravity(ids, cog)
+        self.gm[ids] = gms
+        if self.capsize_angle_deg is None:
+            self.capsize_angle[ids] = lc.vanishing_angles(delta_kg)
+        else:
+            self.capsize_angle[ids] = math.radians(self.capsize_angle_deg)
+        # speed and shaft speed
+        self.initial_speed[ids] = speeds
+        nu = np.zeros((ids.size, 6))
+        nu[:, 0] = speeds
+        if "shaft_speed" in self.commands:
+            if self.speed_range is None:
+                self.commands["shaft_speed"][ids] = self._nominal_shaft_speed
+            else:
+                self.commands["shaft_speed"][ids] = self.shaft_speed_for(speeds)
+        if "rudder_command" in self.commands:
+            self.commands["rudder_command"][ids] = 0.0
+        self.heading_setpoint[ids] = 0.0
+        for i, rng in zip(ids, rngs, strict=True):
+            self._reset_infos[int(i)].update(self._reset_task(int(i), rng))
+        if "heading" in self.commands:
+            self.commands["heading"][ids] = self.heading_setpoint[ids]
+        self.sim.commands = {**self.sim.commands, **self.commands}
+        self.sim.reset(ids, nu=nu, wave_fields=fields)
+        self.episode_steps[ids] = 0
+        self.capsized[ids] = False
+        self._hist_t[ids] = np.nan
+        self._hist[ids] = np.nan
+        self._record_history(ids)
+        obs = self._clean_observations()
+        self._obs[ids] = self._noisy(obs[ids], ids)
+
+    def reset_info(self, ids: NDArray[np.int64]) -> Mapping[str, NDArray]:
+        ids = np.asarray(ids, dtype=np.int64).reshape(-1)
+        out: dict[str, NDArray] = {}
+        keys = self._reset_infos[int(ids[0])].keys() if ids.size else ()
+        for key in keys:
+            out[key] = np.array([self._reset_infos[int(i)][key] for i in ids], dtype=float)
+        out["initial_speed_mps"] = self.initial_speed[ids].copy()
+        out["gm_m"] = self.gm[ids].copy()
+        out["capsize_angle_deg"] = np.degrees(self.capsize_angle[ids])
+        return out
+
+    # ------------------------------------------------------------------ step
+    def step(self, actions: NDArray) -> TaskStep:
+        sim = self.sim
+        a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, -1)
+        self._apply_actions(a)
+        n = self.num_envs
+        position_before = sim.eta[:, :2].copy()
+        max_abs = np.abs(sim.eta[:, 3])
+        sum_sq = np.zeros(n)
+        danger = np.zeros(n)
+        commands: Mapping[str, NDArray] | None = self.commands
+        for _ in range(self.substeps):
+            sim.step(commands)
+            commands = None  # held until changed
+            roll = sim.eta[:, 3]
+            absr = np.abs(roll)
+            np.maximum(max_abs, absr, out=max_abs)
+            sum_sq += roll * roll
+            danger += absr > self.dangerous_roll
+        diverged = sim.diverged.copy()
+        capsized = (max_abs > self.capsize_angle) | diverged
+        newly = capsized & ~self.capsized
+        self.capsized |= capsized
+        stats = StepStatistics(
+            max_abs_roll=max_abs,
+            mean_square_roll=sum_sq / self.substeps,
+            danger_fraction=danger / self.substeps,
+            capsized=self.capsized.copy(),
+            diverged=diverged,
+            newly_capsized=newly,
+            position_before=position_before,
+        )
+        self._last_stats = stats
+        self.episode_steps += 1
+        terms = self._reward_terms(stats)
+        self._record_history(np.arange(n))
+        self._obs = self._noisy(self._clean_observations(), np.arange(n))
+        info = {
+            "capsized": stats.capsized.copy(),
+            "diverged": diverged,
+            "roll_deg": np.degrees(sim.eta[:, 3]),
+            "max_roll_deg": np.degrees(max_abs),
+            **self._task_info(stats),
+        }
+        return TaskStep(
+            reward_terms=terms,
+            cost=stats.danger_fraction.copy(),
+            terminated=stats.capsized.copy(),
+            info=info,
+        )
+
+    # ------------------------------------------------------------------ observations
+    def heading_error(self) -> NDArray:
+        """(N,) wrap(ψ_ref − ψ) [rad] in [−π, π)."""
+        return (self.heading_setpoint - self.sim.eta[:, 5] + math.pi) % _TWO_PI - math.pi
+
+    def _preview(self) -> NDArray:
+        eta = self.sim.eta
+        d = self.wave_preview_m[None, :]
+        x = eta[:, 0:1] + d * np.cos(eta[:, 5:6])
+        y = eta[:, 1:2] + d * np.sin(eta[:, 5:6])
+        return self.sim.elevation(x, y)
+
+    def _clean_observations(self) -> NDArray:
+        sim = self.sim
+        eta, nu = sim.eta, sim.nu
+        beta = self.wave_direction - eta[:, 5]
+        cols = [
+            eta[:, 3],
+            eta[:, 4],
+            eta[:, 2] - self._z_eq,
+            nu[:, 3],
+            nu[:, 4],
+            nu[:, 2],
+            nu[:, 5],
+            nu[:, 0],
+            nu[:, 1],
+            self.heading_error(),
+            np.cos(beta),
+            np.sin(beta),
+        ]
+        if self._rudder_state is not None:
+            cols.append(sim.z[:, self._rudder_state])
+        if "shaft_speed" in self.commands:
+            cols.append(self.commands["shaft_speed"])
+        out = np.empty((self.num_envs, len(self.observation_names)))
+        out[:, : len(cols)] = np.column_stack(cols)
+        extra = self._extra_observations()
+        j = len(cols) + extra.shape[1]
+        out[:, len(cols) : j] = extra
+        if self.wave_preview_m.size:
+            out[:, j:] = self._preview()
+        return out
+
+    def _noisy(self, obs: NDArray, ids: NDArray[np.int64]) -> NDArray[np.float32]:
+        if self.sensor_noise > 0.0:
+            obs = obs.copy()
+            for r, i in enumerate(ids):
+                rng = self._rngs[int(i)]
+                if rng is not None:
+                    obs[r] += self._noise_std * rng.standard_normal(obs.shape[1])
+        obs = np.nan_to_num(obs, nan=0.0, posinf=0.0, neginf=0.0)
+        return np.clip(obs, self._obs_low, self._obs_high).astype(np.float32)
+
+    def observations(self) -> NDArray:
+        return self._obs.copy()
+
+    # ------------------------------------------------------------------ rendering
+    def _record_history(self, ids: NDArray[np.int64]) -> None:
+        h = self._hist_t.shape[1]
+        col = self.episode_steps[ids] % h
+        eta = self.sim.eta[ids]
+        self._hist_t[ids, col] = self.sim.t[ids]
+        self._hist[ids, 0, col] = eta[:, 3]
+        self._hist[ids, 1, col] = eta[:, 4]
+        self._hist[ids, 2, col] = eta[:, 2] - self._z_eq
+        self._hist[ids, 3, col] = eta[:, 5]
+
+    def snapshot(self, i: int) -> RenderSnapshot:
+        from ship_gym.envs.rendering import RenderSnapshot
+
+        sim = self.sim
+        hull = sim.hull.particulars
+        eta = sim.eta[i].copy()
+        profile_x = np.linspace(-0.6 * hull.lpp, 0.6 * hull.lpp, 61)
+        section_y = np.linspace(-1.5 * hull.beam, 1.5 * hull.beam, 31)
+        c, s = math.cos(eta[5]), math.sin(eta[5])
+        px = np.concatenate([profile_x, np.zeros_like(section_y)])
+        py = np.concatenate([np.zeros_like(profile_x), section_y])
+        xs = eta[0] + c * px - s * py
+        ys = eta[1] + s * px + c * py
+        x_all = np.tile(xs, (self.num_envs, 1))
+        y_all = np.tile(ys, (self.num_envs, 1))
+        elevation = sim.elevation(x_all, y_all)[i]
+        order = np.argsort(self._hist_t[i])
+        order = order[np.isfinite(self._hist_t[i, order])]
+        hist = self._hist[i][:, order]
+        info = self._reset_infos[i]
+        title = (
+            f"{type(self).__name__}  H={info.get('wave_height_m', 0.0):.1f} m "
+            f"T={info.get('wave_period_s', 0.0):.1f} s β={info.get('wave_heading_deg', 0.0):.0f}°"
+        )
+        return RenderSnapshot(
+            time=float(sim.t[i]),
+            eta=eta,
+            length=float(hull.lpp),
+            beam=float(hull.beam),
+            draught=float(hull.draught),
+            depth=float(hull.depth),
+            profile_x=profile_x,
+            profile_elevation=elevation[: profile_x.size],
+            section_y=section_y,
+            section_elevation=elevation[profile_x.size :],
+            history_time=self._hist_t[i, order],
+            history={
+                "roll [deg]": np.degrees(hist[0]),
+                "pitch [deg]": np.degrees(hist[1]),
+                "heave [m]": hist[2],
+                "heading [deg]": np.degrees(hist[3]),
+            },
+            actions=self._action_labels(i),
+            title=title,
+            roll_limit=float(self.capsize_angle[i]),
+        )
+
+
+# =============================================================================================
+# shared keyword validation of the S175 tasks
+# =============================================================================================
+def s175_setup(
+    *,
+    froude_number: float,
+    physics_dt: float,
+    integrator: str,
+    rudder: Literal["command", "autopilot"],
+    hull_mesh: Sequence[int],
+    kg: float | None,
+) -> ShipSetup:
+    """The S175 setup of the ship tasks: state-space radiation memory, diffraction, Ikeda roll
+    damping, propulsion (Holtrop resistance + B-series propeller), manoeuvring forces and a
+    rudder behind its servo (commanded, or under the heading autopilot).
+
+    Parameters
+    ----------
+    froude_number : float
+        Reference Froude number Fn = U/√(g Lpp) [-] (0.05 … 0.5).
+    physics_dt : float
+        Physics time step [s] (0.01 … 0.5).
+    integrator : {"holloway", "rk4"}
+        Holloway's μ-Taylor scheme (1 force evaluation per step) or RK4 (4).
+    rudder : {"command", "autopilot"}
+        Rudder following ``"rudder_command"`` or the PID heading autopilot (``"heading"``).
+    hull_mesh : sequence of 4 int
+        S175 mesh (n_sections, n_below, n_above, n_deck); :data:`S175_MESH` is the default.
+    kg : float or None
+        KG of the loading [m] (None: 9.55 m, the ITTC condition, GM ≈ 1.0 m).
+    """
+    from ship_gym.dynamics.ship import ShipSetup
+
+    if not (isinstance(froude_number, int | float) and 0.05 <= froude_number <= 0.5):
+        raise ValueError(f"froude_number must be in [0.05, 0.5] [-], got {froude_number!r}")
+    if not (isinstance(physics_dt, int | float) and 0.01 <= physics_dt <= 0.5):
+        raise ValueError(f"physics_dt must be in [0.01, 0.5] [s], got {physics_dt!r}")
+    if integrator not in ("holloway", "rk4"):
+        raise ValueError(f"integrator must be 'holloway' or 'rk4', got {integrator!r}")
+    mesh = tuple(hull_mesh) if isinstance(hull_mesh, Sequence) else ()
+    if len(mesh) != 4 or not all(
+        isinstance(v, int | np.integer) and not isinstance(v, bool) and v >= 2 for v in mesh
+    ):
+        raise ValueError(
+            f"hull_mesh must be 4 integers >= 2 (n_sections, n_below, n_above, n_deck), "
+            f"got {hull_mesh!r}"
+        )
+    overrides: dict[str, Any] = {}
+    if mesh != S175_MESH:
+        overrides.update(
+            n_sections=int(mesh[0]),
+            n_below=int(mesh[1]),
+            n_above=int(mesh[2]),
+            n_deck=int(mesh[3]),
+        )
+    if kg is not None:
+        if not (isinstance(kg, int | float) and 5.0 <= kg <= 12.0):
+            raise ValueError(f"kg must be in [5, 12] [m] (S175 depth 15.4 m), got {kg!r}")
+        overrides["kg"] = float(kg)
+    speed = float(froude_number) * math.sqrt(GRAVITY * 175.0)
+    return ShipSetup(
+        hull="s175",
+        hull_overrides=overrides,
+        database="s175",
+        speed=speed,
+        radiation="state_space",
+        diffraction=True,
+        viscous_roll=True,
+        integrator=integrator,  # type: ignore[arg-type]
+        dt=float(physics_dt),
+        propulsion=True,
+        manoeuvring=True,
+        rudder=rudder,
+    )
+
+
+def check_weight(name: str, value: Any) -> float:
+    """A reward weight ≥ 0 (finite), else ValueError."""
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, int | float)
+        or not (math.isfinite(value) and value >= 0.0)
+    ):
+        raise ValueError(f"{name} must be a finite weight >= 0, got {value!r}")
+    return float(value)
+
+
+def check_positive(name: str, value: Any, unit: str, high: float = math.inf) -> float:
+    """A positive finite number ≤ ``high``, else ValueError."""
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, int | float)
+        or not (math.isfinite(value) and 0.0 < value <= high)
+    ):
+        raise ValueError(f"{name} must be in (0, {high}] [{unit}], got {value!r}")
+    return float(value)

@@ -1,0 +1,162 @@
+"""agents.baselines: name lookup, the control laws' arithmetic and signs, and that they control."""
+
+import math
+
+import gymnasium
+import numpy as np
+import pytest
+
+import ship_gym  # noqa: F401  (registers the ids)
+from agents.baselines import (
+    EnvLayout,
+    PIDAutopilot,
+    RideController,
+    RollFinController,
+    ZeroAction,
+    find_name,
+    make_baseline,
+)
+
+ROLL_ID = "ship_gym/RollOneDOF-v0"
+
+
+def _layout(obs, act, dt=0.5):
+    return EnvLayout(observation_names=tuple(obs), action_names=tuple(act), control_dt=dt)
+
+
+def test_find_name_exact_partial_ambiguous_missing():
+    names = ["roll [rad]", "roll rate [rad/s]", "heading error [rad]"]
+    assert find_name(names, ["roll"], what="x") == 0  # exact base beats "roll rate"
+    assert find_name(names, ["roll rate"], what="x") == 1
+    assert find_name(names, ["error"], what="x") == 2  # whole-word partial match
+    with pytest.raises(ValueError, match="ambiguous"):
+        find_name(["fin port [rad]", "fin starboard [rad]"], ["fin"], what="x")
+    with pytest.raises(ValueError, match=r"yaw rate.*roll rate \[rad/s\]"):
+        find_name(names, ["yaw rate"], what="observation 'yaw rate'")
+    assert find_name(names, ["yaw rate"], what="x", required=False) is None
+
+
+def test_roll_fin_law_sign_and_degree_units():
+    """a = −(k_φ φ + k_p p); observations in degrees are converted to radians first."""
+    rad = RollFinController(
+        layout=_layout(["roll [rad]", "roll rate [rad/s]"], ["fins (-1..1 = ±25 deg)"]),
+        k_roll=1.5,
+        k_rate=4.0,
+    )
+    deg = RollFinController(
+        layout=_layout(["roll rate [deg/s]", "roll [deg]"], ["fins (-1..1 = ±25 deg)"]),
+        k_roll=1.5,
+        k_rate=4.0,
+    )
+    phi, p = 0.05, -0.02
+    a_rad, _ = rad.predict(np.array([phi, p]))
+    a_deg, _ = deg.predict(np.array([math.degrees(p), math.degrees(phi)]))
+    expected = -(1.5 * phi + 4.0 * p)
+    assert a_rad.shape == (1,)
+    assert a_rad.dtype == np.float32
+    assert a_rad[0] == pytest.approx(expected, rel=1e-6)  # float32 output
+    assert a_deg[0] == pytest.approx(expected, rel=1e-6)
+    # positive roll (starboard down), no rate → negative (port-down) fin moment; clipped to ±1
+    big, _ = rad.predict(np.array([[2.0, 0.0], [-2.0, 0.0]]))
+    np.testing.assert_array_equal(big[:, 0], [-1.0, 1.0])
+
+
+def test_pid_autopilot_terms_integral_and_episode_start():
+    layout = _layout(
+        ["heading error [rad]", "yaw rate [rad/s]", "roll [rad]"],
+        ["rudder (-1..1 = ±35 deg)", "shaft (-1..1)"],
+        dt=2.0,
+    )
+    pid = PIDAutopilot(layout=layout, k_p=2.0, k_d=10.0, k_i=0.1)
+    obs = np.array([[0.1, 0.01, 0.0], [-0.2, 0.0, 0.0]])
+    a1, state = pid.predict(obs, episode_start=np.array([True, True]))
+    # integral after one step: e·dt
+    np.testing.assert_allclose(state[:, 0], [0.2, -0.4])
+    np.testing.assert_allclose(
+        a1[:, 0], [2.0 * 0.1 - 10.0 * 0.01 + 0.1 * 0.2, 2.0 * -0.2 + 0.1 * -0.4], rtol=1e-6
+    )
+    np.testing.assert_array_equal(a1[:, 1], [0.0, 0.0])  # the shaft is not driven
+    _, state = pid.predict(obs, state=state, episode_start=np.array([False, True]))
+    np.testing.assert_allclose(state[:, 0], [0.4, -0.4])  # episode 1 restarted its integral
+
+
+def test_pid_without_yaw_rate_uses_the_error_difference():
+    layout = _layout(["heading error [deg]"], ["rudder command (-1..1 = ±35 deg)"], dt=1.0)
+    pid = PIDAutopilot(layout=layout, k_p=0.0, k_d=5.0, k_i=0.0)
+    pid.predict(np.array([1.0]), episode_start=np.array([True]))
+    a, _ = pid.predict(np.array([3.0]))
+    # e went from 1° to 3° in 1 s: ė = 2°/s = −r → a = −k_d r = k_d ė
+    assert a[0] == pytest.approx(5.0 * math.radians(2.0), rel=1e-6)
+
+
+def test_ride_controller_law():
+    ride = RideController(
+        layout=_layout(
+            ["heave velocity [m/s]", "pitch rate [rad/s]"], ["T-foil (-1..1 = ±15 deg)"]
+        ),
+        k_heave=2.0,
+        k_pitch=3.0,
+    )
+    a, state = ride.predict(np.array([0.1, 0.05]))
+    assert state is None
+    assert a[0] == pytest.approx(2.0 * 0.1 - 3.0 * 0.05, rel=1e-6)
+
+
+def test_missing_names_and_bad_gains_raise_clearly():
+    env = gymnasium.make(ROLL_ID)
+    with pytest.raises(ValueError, match="heading error"):
+        make_baseline("pid", env)
+    with pytest.raises(ValueError, match="foil"):
+        make_baseline("ride", _EnvStub(["heave velocity [m/s]", "pitch rate [rad/s]"], ["fins"]))
+    with pytest.raises(ValueError, match="unknown baseline"):
+        make_baseline("lqr", env)
+    with pytest.raises(ValueError, match="k_rate"):
+        RollFinController.for_env(env, k_rate=-1.0)
+    with pytest.raises(ValueError, match="shape"):
+        make_baseline("zero", env).predict(np.zeros(3))
+
+
+class _EnvStub:
+    def __init__(self, obs, act):
+        self.observation_names = tuple(obs)
+        self.action_names = tuple(act)
+        self.control_dt = 0.1
+
+
+def test_for_env_reads_names_from_single_vector_and_sb3_envs():
+    from ship_gym.envs.sb3 import make_sb3_vec_env
+
+    single = gymnasium.make(ROLL_ID)
+    vector = gymnasium.make_vec(ROLL_ID, num_envs=2, vectorization_mode="vector_entry_point")
+    sb3 = make_sb3_vec_env(ROLL_ID, 2)
+    layouts = [make_baseline("fins", e).layout for e in (single, vector, sb3)]
+    assert layouts[0].observation_names == layouts[1].observation_names
+    assert layouts[0].observation_names == layouts[2].observation_names
+    assert layouts[0].env_id == ROLL_ID
+    # per-env default gains for RollOneDOF
+    assert make_baseline("fins", single).k_rate == 20.0
+    assert isinstance(ZeroAction.for_env(single), ZeroAction)
+
+
+def test_roll_fin_baseline_prevents_capsizes_on_roll_one_dof():
+    """Same 12 seas: the passive ship capsizes in about half (F up to 0.05 rad/s² at 0.85 ωₙ,
+    beyond the safe-basin erosion threshold), the PD roll-moment controller in none."""
+    from agents.evaluate import run_episodes, summarize
+
+    seeds = range(100, 112)
+    zero = summarize(run_episodes(ROLL_ID, lambda env: make_baseline("zero", env), seeds))
+    fins = summarize(run_episodes(ROLL_ID, lambda env: make_baseline("fins", env), seeds))
+    assert zero["capsize_rate"] >= 0.25
+    assert fins["capsize_rate"] == 0.0
+    assert fins["rms_roll_deg"] < 0.5 * zero["rms_roll_deg"]
+
+
+def test_baseline_works_with_sb3_evaluate_policy():
+    from stable_baselines3.common.evaluation import evaluate_policy
+
+    from ship_gym.envs.sb3 import make_sb3_vec_env
+
+    venv = make_sb3_vec_env(ROLL_ID, 2, seed=0, max_episode_steps=40)
+    mean, _ = evaluate_policy(make_baseline("fins", venv), venv, n_eval_episodes=2)
+    # 40 steps upright: alive bonus 1 per step minus small roll/effort penalties
+    assert 30.0 < mean <= 40.0

@@ -1,0 +1,109 @@
+"""agents.train and ship_gym.cli_agents: configs, a tiny training run, CLI wiring."""
+
+import argparse
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import ship_gym  # noqa: F401
+from agents.evaluate import load_policy
+from agents.train import config_from_mapping, dump_toml, load_config, train
+from ship_gym import cli_agents
+from ship_gym.envs import ENV_IDS
+
+CONFIGS = sorted((Path(__file__).parents[2] / "agents" / "configs").glob("*.toml"))
+
+
+def test_there_is_a_config_for_every_env_id():
+    ids = {load_config(p).env_id for p in CONFIGS}
+    assert ids == set(ENV_IDS)
+
+
+@pytest.mark.parametrize("path", CONFIGS, ids=lambda p: p.stem)
+def test_shipped_configs_are_valid_and_round_trip(path):
+    config = load_config(path)
+    assert config.algorithm in ("PPO", "SAC")
+    assert config.total_timesteps > 10_000
+    assert tomllib.loads(dump_toml(config.raw)) == config.raw
+
+
+def test_config_errors_are_clear(tmp_path):
+    with pytest.raises(ValueError, match="unknown keys"):
+        config_from_mapping({"env": {"id": "x", "n_env": 4}})
+    with pytest.raises(ValueError, match=r"\[env\] id"):
+        config_from_mapping({"env": {}})
+    with pytest.raises(ValueError, match=r"algorithm\.name"):
+        config_from_mapping({"env": {"id": "x"}, "algorithm": {"name": "DQNN"}})
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[env\nid=")
+    with pytest.raises(ValueError, match="invalid TOML"):
+        load_config(bad)
+    with pytest.raises(FileNotFoundError):
+        load_config(tmp_path / "missing.toml")
+
+
+def _tiny_config(tmp_path, **training):
+    return {
+        "env": {"id": "ship_gym/RollOneDOF-v0", "n_envs": 2, "normalize": True},
+        "algorithm": {
+            "name": "PPO",
+            "hyperparameters": {"n_steps": 32, "batch_size": 64, "n_epochs": 1},
+            "policy_kwargs": {"net_arch": [16]},
+        },
+        "training": {
+            "total_timesteps": 128,
+            "output_dir": str(tmp_path / "run"),
+            "progress_bar": False,
+            "tensorboard": True,
+            **training,
+        },
+    }
+
+
+def test_smoke_train_tiny_ppo_saves_model_config_normalizer(tmp_path):
+    out = train(config_from_mapping(_tiny_config(tmp_path)))
+    for name in ("model.zip", "config.toml", "vecnormalize.pkl", "summary.json"):
+        assert (out / name).exists(), name
+    assert any((out / "tensorboard").rglob("events.out.tfevents*"))
+    policy = load_policy(out)
+    assert policy.obs_normalizer is not None
+    action, _ = policy.predict(np.zeros((3, 4), np.float32))
+    assert action.shape == (3, 1)
+
+
+def _parser():
+    parser = argparse.ArgumentParser()
+    sub = parser.add_subparsers(dest="command", required=True)
+    cli_agents.add_commands(sub)
+    return parser
+
+
+def test_smoke_cli_train_and_evaluate(tmp_path, capsys):
+    config = tmp_path / "c.toml"
+    config.write_text(dump_toml(_tiny_config(tmp_path, tensorboard=False)))
+    args = _parser().parse_args(["train", str(config), "--timesteps", "64", "--no-progress"])
+    assert args.func(args) == 0
+    run = tmp_path / "run"
+    args = _parser().parse_args(
+        [
+            "evaluate",
+            "--env",
+            "ship_gym/RollOneDOF-v0",
+            "--policies",
+            f"zero,fins,model:{run}",
+            "--episodes",
+            "2",
+            "--max-steps",
+            "20",
+            "--out",
+            str(tmp_path / "ev"),
+            "--no-progress",
+            "--no-plot",
+        ]
+    )
+    assert args.func(args) == 0
+    printed = capsys.readouterr().out
+    assert "capsize_rate" in printed
+    assert (tmp_path / "ev" / "evaluation.csv").exists()

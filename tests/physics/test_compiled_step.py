@@ -1,0 +1,163 @@
+"""CompiledShip against BatchSimulator and Simulator (same setup, same sea, same start).
+
+The compiled stepper re-implements the reference force set and the integrators in one numba
+loop; with float64 wave sums it must follow the other engines' trajectories to rounding, and
+with float32 wave sums stay within a stated tolerance of its float64 self.
+"""
+
+import numpy as np
+import pytest
+
+from ship_gym.dynamics.batch import build_batch_simulator
+from ship_gym.dynamics.compiled_step import CompiledShip, build_compiled_ship
+from ship_gym.dynamics.ship import ShipSetup, build_simulator, wave_field_for
+from ship_gym.dynamics.simulator import SimulationDiverged
+from ship_gym.waves.sea_state import IrregularSea
+
+# bow-quartering (roll excited) with a short ramp: the waves are fully up within the compared
+# window; the oblique sea turns the ship, so the diffraction cache is refreshed along the way
+SEA = IrregularSea(hs=5.0, tp=11.0, n_components=50, ramp_time=5.0)
+BETA = np.radians(135.0)
+# Rounding-level agreement: the engines do the same arithmetic except the order of a few sums
+# (BLAS vs loops) and the wave phasors (polynomial sin/cos vs libm, a few ulp): differences of
+# ~1e-15 that a stable, damped system carries along without growth; observed ≲ 1e-14 relative
+# over 300 steps. 1e-9 (the BatchSimulator test's bar) leaves a wide margin.
+REL_TOL = 1e-9
+# float32 wave sums: forces within ~1e-7 of the hydrostatic scale (test_froude_krylov.py);
+# observed trajectory differences ≲ 2e-7 of the motion over 300 steps; bar 2e-6.
+F32_TOL = 2e-6
+
+
+def _field(seed: int = 0, beta: float = BETA):
+    return wave_field_for(SEA, beta, np.random.default_rng(seed))
+
+
+def _rel_err(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Max |a − b| per DOF over time, relative to the largest excursion of b from its start
+    (floor: 1e-6 of the largest excursion, for DOF that stay ≈ still)."""
+    scale = np.abs(b - b[0]).max(axis=0)
+    scale = np.maximum(scale, 1e-6 * scale.max())
+    return np.abs(a - b).max(axis=0) / scale
+
+
+@pytest.mark.parametrize(
+    ("integrator", "n_steps", "free"),
+    [
+        ("holloway", 300, (True,) * 6),
+        ("rk4", 80, (True,) * 6),
+        ("holloway", 120, (False, False, True, True, True, False)),  # surge, sway, yaw held
+    ],
+)
+def test_matches_batch_simulator(integrator, n_steps, free):
+    setup = ShipSetup(integrator=integrator, free_dofs=free)
+    field = _field()
+    ship = build_compiled_ship(setup, field)
+    batch = build_batch_simulator(setup, [field])
+    np.testing.assert_array_equal(ship.eta, batch.eta[0])
+    mine = ship.run(n_steps)
+    theirs = batch.run(n_steps)
+    np.testing.assert_allclose(mine["t"], theirs["t"][:, 0], rtol=1e-12)
+    for key in ("eta", "nu"):
+        err = _rel_err(mine[key], theirs[key][:, 0])
+        assert err.max() < REL_TOL, f"{integrator} {key}: relative error per DOF {err}"
+    np.testing.assert_allclose(ship.z, batch.z[0], rtol=0, atol=REL_TOL * np.abs(batch.z).max())
+    if free[5]:
+        assert ship.n_refreshes > 1  # the cache was refreshed after the first look-up
+
+
+def test_constant_coefficient_radiation_matches_batch_simulator():
+    # Matusiak's case 2b (no memory states, −B_c ν_p, A_c on the left): the bench's baseline
+    setup = ShipSetup(integrator="holloway", radiation="2b")
+    field = _field()
+    ship = build_compiled_ship(setup, field, sea=SEA, wave_heading=BETA)
+    batch = build_batch_simulator(setup, [field], sea=SEA, wave_heading=BETA)
+    assert ship.n_states == 0
+    mine, theirs = ship.run(120), batch.run(120)
+    for key in ("eta", "nu"):
+        err = _rel_err(mine[key], theirs[key][:, 0])
+        assert err.max() < REL_TOL, f"{key}: relative error per DOF {err}"
+
+
+def test_matches_simulator_with_speed_and_initial_heel():
+    # the single-ship engine (its own Holloway start-up), at 4 m/s with an initial heel and yaw
+    # rate so that every term (Coriolis, encounter-frequency diffraction, U in ν_p) is active
+    setup = ShipSetup(integrator="holloway", speed=4.0)
+    sim = build_simulator(setup, SEA, wave_heading=2.5, rng=np.random.default_rng(2))
+    field = sim.wave_field
+    eta, nu = sim.eta.copy(), sim.nu.copy()
+    eta[3], nu[5] = 0.1, 0.01
+    sim.reset(eta=eta, nu=nu)
+    ship = build_compiled_ship(setup, field)
+    ship.reset(eta=eta, nu=nu)
+    steps = 160
+    ref_eta, ref_nu = [sim.eta.copy()], [sim.nu.copy()]
+    for _ in range(steps):
+        sim.step()
+        ref_eta.append(sim.eta.copy())
+        ref_nu.append(sim.nu.copy())
+    mine = ship.run(steps)
+    for key, ref in (("eta", np.array(ref_eta)), ("nu", np.array(ref_nu))):
+        err = _rel_err(mine[key], ref)
+        assert err.max() < REL_TOL, f"{key}: relative error per DOF {err}"
+
+
+def test_float32_wave_sums_stay_close_to_float64():
+    setup = ShipSetup(integrator="holloway")
+    field = _field()
+    f64 = build_compiled_ship(setup, field).run(300)
+    f32 = build_compiled_ship(setup, field, precision="float32").run(300)
+    for key in ("eta", "nu"):
+        err = _rel_err(f32[key], f64[key])
+        assert err.max() < F32_TOL, f"{key}: relative error per DOF {err}"
+    # and it is not trivially the same computation
+    assert np.any(f32["eta"] != f64["eta"])
+
+
+def test_calm_water_equilibrium_stays_put():
+    # at the free-floating equilibrium in calm water every force balances: the ship must not
+    # move (1e-9 m, 1e-9 rad over 200 steps: the equilibrium solver's tolerance)
+    ship = build_compiled_ship(ShipSetup(integrator="holloway"), None)
+    start = ship.eta.copy()
+    ship.advance(200)
+    np.testing.assert_allclose(ship.eta, start, rtol=0, atol=1e-9)
+    assert ship.t == pytest.approx(10.0)
+    assert ship.n_steps == 200
+
+
+def test_advance_in_pieces_equals_one_call():
+    setup = ShipSetup(integrator="holloway")
+    field = _field(1)
+    a = build_compiled_ship(setup, field)
+    b = build_compiled_ship(setup, field)
+    a.advance(50)
+    for n in (1, 2, 7, 40):
+        b.advance(n)
+    np.testing.assert_array_equal(a.eta, b.eta)
+    np.testing.assert_array_equal(a.nu, b.nu)
+    np.testing.assert_array_equal(a.z, b.z)
+
+
+def test_divergence_raises_and_keeps_the_last_state():
+    setup = ShipSetup(integrator="holloway")
+    ship = build_compiled_ship(setup, _field())
+    ship.max_abs_velocity = 1e-3  # the waves push the ship faster than this within a few s
+    with pytest.raises(SimulationDiverged, match="diverged"):
+        ship.advance(400)
+    assert np.all(np.abs(ship.nu) <= 1e-3)
+    assert 0 < ship.n_steps < 400
+    assert ship.t == pytest.approx(ship.n_steps * ship.dt)
+
+
+def test_bad_input_is_rejected():
+    setup = ShipSetup(integrator="holloway")
+    ship = build_compiled_ship(setup, None)
+    with pytest.raises(ValueError, match="n_steps"):
+        ship.advance(-1)
+    with pytest.raises(ValueError, match="6 components"):
+        ship.reset(eta=np.zeros(5))
+    with pytest.raises(ValueError, match="precision"):
+        CompiledShip(ship.hull, list(ship.models.__dict__.values()), None, precision="half")
+    with pytest.raises(NotImplementedError, match="state_space"):
+        build_compiled_ship(ShipSetup(integrator="holloway", radiation="convolution"), None)
+    with pytest.raises(NotImplementedError, match="'holloway' and 'rk4'"):
+        build_compiled_ship(ShipSetup(integrator="abm"), None)
