@@ -204,7 +204,28 @@ class _Rendering:
             self._viewer = None
 
 
-class TaskEnv(gymnasium.Env):
+class _TaskView:
+    """What both wrappers expose of their task: names of the entries and the control step."""
+
+    task: BatchedTask
+
+    @property
+    def observation_names(self) -> tuple[str, ...]:
+        """Names (with units) of one episode's observation entries."""
+        return self.task.observation_names
+
+    @property
+    def action_names(self) -> tuple[str, ...]:
+        """Names (with the physical scaling) of one episode's action entries."""
+        return self.task.action_names
+
+    @property
+    def control_dt(self) -> float:
+        """Control time step [s]."""
+        return self.task.control_dt
+
+
+class TaskEnv(_TaskView, gymnasium.Env):
     """One episode of a :class:`BatchedTask` as a ``gymnasium.Env``.
 
     Subclasses set :attr:`task_class` and write the environment's docstring (Gymnasium v5
@@ -224,21 +245,6 @@ class TaskEnv(gymnasium.Env):
         self._ids = np.zeros(1, dtype=np.int64)
         self._steps = 0
         self._has_reset = False
-
-    @property
-    def observation_names(self) -> tuple[str, ...]:
-        """Names (with units) of the observation entries."""
-        return self.task.observation_names
-
-    @property
-    def action_names(self) -> tuple[str, ...]:
-        """Names (with the physical scaling) of the action entries."""
-        return self.task.action_names
-
-    @property
-    def control_dt(self) -> float:
-        """Control time step [s]."""
-        return self.task.control_dt
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -291,7 +297,7 @@ def _item(values: ArrayLike, i: int) -> Any:
     return v.item() if isinstance(v, np.generic) else v
 
 
-class TaskVectorEnv(VectorEnv):
+class TaskVectorEnv(_TaskView, VectorEnv):
     """N episodes of a :class:`BatchedTask` stepped in one call, a ``gymnasium.vector.VectorEnv``.
 
     Parameters
@@ -359,21 +365,6 @@ class TaskVectorEnv(VectorEnv):
         self._steps = np.zeros(n, dtype=np.int64)
         self._pending_reset = np.zeros(n, dtype=bool)
         self._has_reset = False
-
-    @property
-    def observation_names(self) -> tuple[str, ...]:
-        """Names (with units) of one episode's observation entries."""
-        return self.task.observation_names
-
-    @property
-    def action_names(self) -> tuple[str, ...]:
-        """Names (with the physical scaling) of one episode's action entries."""
-        return self.task.action_names
-
-    @property
-    def control_dt(self) -> float:
-        """Control time step [s]."""
-        return self.task.control_dt
 
     def _observations(self) -> NDArray[np.float32]:
         return _bounded(self.task.observations(), self.single_observation_space)
