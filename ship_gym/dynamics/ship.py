@@ -89,8 +89,9 @@ class ShipSetup:
         Time integration scheme.
     dt : float
         Physics time step [s].
-    fk_method : {"fast", "reference"}
-        Froude–Krylov kernel implementation.
+    fk_method : {"fast", "fast32", "reference"}
+        Froude–Krylov kernel implementation (``"fast32"``: wave sums in float32, ≈ 2× faster,
+        forces within ≈ 1e-7 of the reference).
     free_dofs : tuple of bool
         DOFs integrated (held DOFs keep their initial velocity).
     lumped : bool
@@ -123,7 +124,7 @@ class ShipSetup:
     bilge_keels: bool = False
     integrator: IntegratorName = "rk4"
     dt: float = 0.05
-    fk_method: Literal["fast", "reference"] = "fast"
+    fk_method: Literal["fast", "fast32", "reference"] = "fast"
     free_dofs: tuple[bool, ...] = (True, True, True, True, True, True)
     lumped: bool = False
     propulsion: bool = False

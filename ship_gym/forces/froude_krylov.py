@@ -669,6 +669,38 @@ def _fk_one_ship_f32(
     )  # fmt: skip
 
 
+@nb.njit(cache=True)
+def _wet_range(depth: np.ndarray, v0: int, n: int) -> tuple[int, int]:  # pragma: no cover
+    """(first, last + 1) offsets from v0 of the vertices with depth ≥ 0 among depth[v0:v0 + n],
+    (n, 0) if none: integer min/max reductions without branches (they vectorise)."""
+    lo = n
+    hi = 0
+    vo = nb.uint64(v0)
+    for u in range(n):
+        wet = depth[vo + nb.uint64(u)] >= 0.0
+        lo = min(lo, u if wet else n)
+        hi = max(hi, u + 1 if wet else 0)
+    return lo, hi
+
+
+@nb.njit(fastmath=_FM, cache=True)
+def _store_pressure(
+    depth: np.ndarray,
+    rz: np.ndarray,
+    acc: np.ndarray,
+    pres: np.ndarray,
+    z0: float,
+    rho_g: float,
+    v0: int,
+    n: int,
+) -> None:  # pragma: no cover - compiled
+    """pres[v0 + u] = ρg (z + acc[u]) where wet (depth ≥ 0), else 0 (a select: vectorises)."""
+    vo = nb.uint64(v0)
+    for u in range(nb.uint64(n)):
+        p = rho_g * (z0 + rz[vo + u] + acc[u])
+        pres[vo + u] = p if depth[vo + u] >= 0.0 else 0.0
+
+
 @nb.njit(fastmath=_FM, cache=True, nogil=True)
 def _fk_core_f32(
     body: np.ndarray,
@@ -762,14 +794,12 @@ def _fk_core_f32(
             pres[vo + u] = 0.0
         for u0 in range(0, nb_, _SUB_F32):
             u1 = min(u0 + _SUB_F32, nb_)
-            lo = u0
-            while lo < u1 and not depth[v0 + lo] >= 0.0:
-                lo += 1
-            if lo == u1:
+            # the wet range [lo, hi) of the sub-block: branch-free min/max reductions
+            lo, hi = _wet_range(depth, v0 + u0, u1 - u0)
+            if hi == 0:
                 continue
-            hi = u1
-            while not depth[v0 + hi - 1] >= 0.0:
-                hi -= 1
+            lo += u0
+            hi += u0
             lo -= lo % 8
             hi = min(hi + (-hi) % 8, _BLOCK)
             n = hi - lo
@@ -782,9 +812,7 @@ def _fk_core_f32(
             for j in range(n_c):
                 if k2[j] * dmin < _DECAY_CUTOFF_F32:
                     _decayed_row_f32(k2[j], dpos, spatial, j * _BLOCK + lo, acc, n)
-            for u in range(lo, min(hi, nb_)):
-                if depth[v0 + u] >= 0.0:
-                    pres[v0 + u] = rho_g * (z0 + rz[v0 + u] + acc[u - lo])
+            _store_pressure(depth, rz, acc, pres, z0, rho_g, v0 + lo, min(hi, nb_) - lo)
     _integrate(tri, tri_last, tri_first, body, weights, areas, rot, depth, pres, out)
 
 
