@@ -167,6 +167,7 @@ class Baseline:
 
     name: ClassVar[str] = "baseline"
     layout: EnvLayout
+    _idx: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
 
     @classmethod
     def for_env(cls, env: Any, **gains: float) -> Baseline:
@@ -185,7 +186,19 @@ class Baseline:
         self._bind()
 
     def _bind(self) -> None:
-        """Look the needed names up (ValueError when missing)."""
+        """Look the needed names up into ``_idx`` (ValueError when missing)."""
+
+    def _observed(self, obs: NDArray, key: str) -> NDArray:
+        """(N,) observation bound to ``key`` in ``_idx``, in SI units (angles in radians)."""
+        i, factor = self._idx[key]
+        return obs[:, i] * factor
+
+    def _drive(self, obs: NDArray, key: str, command: NDArray) -> NDArray:
+        """(N, n_act) actions: ``command`` on the action bound to ``key`` in ``_idx``, 0 on the
+        others."""
+        actions = np.zeros((obs.shape[0], len(self.layout.action_names)))
+        actions[:, self._idx[key]] = command
+        return actions
 
     def _law(self, obs: NDArray, state: NDArray | None) -> tuple[NDArray, NDArray | None]:
         """(N, n_obs) → ((N, n_act) actions, new state)."""
@@ -287,7 +300,6 @@ class PIDAutopilot(Baseline):
     k_d: float = 38.0
     k_i: float = 0.014
     integral_limit: float = 30.0
-    _idx: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
 
     def _bind(self) -> None:
         self._idx["error"] = self.layout.observation(("heading error", "course error"))
@@ -300,18 +312,15 @@ class PIDAutopilot(Baseline):
 
     def _law(self, obs: NDArray, state: NDArray | None) -> tuple[NDArray, NDArray | None]:
         assert state is not None
-        i_e, f_e = self._idx["error"]
-        i_r, f_r = self._idx["rate"]
-        e = obs[:, i_e] * f_e
+        e = self._observed(obs, "error")
         dt = self.layout.control_dt
-        if i_r >= 0:
-            r = obs[:, i_r] * f_r
+        if self._idx["rate"][0] >= 0:
+            r = self._observed(obs, "rate")
         else:  # e = ψ_ref − ψ with a fixed set-point: ė = −r
             r = -(e - state[:, 1]) / dt
         integral = np.clip(state[:, 0] + e * dt, -self.integral_limit, self.integral_limit)
-        actions = np.zeros((obs.shape[0], len(self.layout.action_names)))
-        actions[:, self._idx["rudder"]] = self.k_p * e - self.k_d * r + self.k_i * integral
-        return actions, np.column_stack([integral, e])
+        command = self.k_p * e - self.k_d * r + self.k_i * integral
+        return self._drive(obs, "rudder", command), np.column_stack([integral, e])
 
 
 @dataclass
@@ -336,7 +345,6 @@ class RollFinController(Baseline):
     name: ClassVar[str] = "fins"
     k_roll: float = 1.0
     k_rate: float = 7.0
-    _idx: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
 
     def _bind(self) -> None:
         self._idx["roll"] = self.layout.observation(("roll", "roll angle"))
@@ -350,23 +358,25 @@ class RollFinController(Baseline):
         self._idx["fins"] = fin
 
     def _law(self, obs: NDArray, state: NDArray | None) -> tuple[NDArray, NDArray | None]:
-        i_phi, f_phi = self._idx["roll"]
-        i_p, f_p = self._idx["rate"]
-        actions = np.zeros((obs.shape[0], len(self.layout.action_names)))
-        actions[:, self._idx["fins"]] = -(
-            self.k_roll * obs[:, i_phi] * f_phi + self.k_rate * obs[:, i_p] * f_p
-        )
-        return actions, None
+        roll, rate = self._observed(obs, "roll"), self._observed(obs, "rate")
+        return self._drive(obs, "fins", -(self.k_roll * roll + self.k_rate * rate)), None
 
 
 @dataclass
 class RideController(Baseline):
     """Classical T-foil ride control: a = k_heave w − k_pitch q (action units).
 
-    w is the heave velocity (positive down), q the pitch rate (positive bow up); a positive
+    w is the heave velocity (body, positive down), q the pitch rate (positive bow up); a positive
     T-foil command gives an upward force and a bow-up moment
-    (:class:`ship_gym.control.stabilisers.RideController`). Defaults: about 0.2 of critical
-    damping in heave and pitch for a fast ferry's T-foil (±15°).
+    (:class:`ship_gym.control.stabilisers.RideController`), so both terms damp.
+
+    Defaults tuned on RideControl-v0 (S175, Fn 0.3, head/bow seas Hs 2–4 m, Tp 7–11 s; 60 s
+    episodes, seeds 0–7): pitch-rate damping alone, k_pitch = 40 action units/(rad/s) (the ±15°
+    foil saturates at q ≈ 1.4°/s), lowers the RMS vertical acceleration at the passenger by 6.6 %
+    (seeds 0–3) and 4.3 % (seeds 4–7) against zero action, and the return with it. Heave-velocity
+    feedback did not help (k_heave = 4, k_pitch = 0: +5.5 %; the former defaults 1, 10: −1.3 %
+    and +0.5 %), nor did feedback on the earth-vertical velocity w cos θ − u sin θ instead of
+    the body w (≈ ż + U θ at speed U): so k_heave = 0.
 
     Attributes
     ----------
@@ -377,9 +387,8 @@ class RideController(Baseline):
     """
 
     name: ClassVar[str] = "ride"
-    k_heave: float = 1.0
-    k_pitch: float = 10.0
-    _idx: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
+    k_heave: float = 0.0
+    k_pitch: float = 40.0
 
     def _bind(self) -> None:
         self._idx["w"] = self.layout.observation(("heave velocity", "heave rate", "w"))
@@ -387,13 +396,8 @@ class RideController(Baseline):
         self._idx["foil"] = self.layout.action(("t-foil", "tfoil", "foil"))
 
     def _law(self, obs: NDArray, state: NDArray | None) -> tuple[NDArray, NDArray | None]:
-        i_w, f_w = self._idx["w"]
-        i_q, f_q = self._idx["q"]
-        actions = np.zeros((obs.shape[0], len(self.layout.action_names)))
-        actions[:, self._idx["foil"]] = (
-            self.k_heave * obs[:, i_w] * f_w - self.k_pitch * obs[:, i_q] * f_q
-        )
-        return actions, None
+        w, q = self._observed(obs, "w"), self._observed(obs, "q")
+        return self._drive(obs, "foil", self.k_heave * w - self.k_pitch * q), None
 
 
 BASELINES: Mapping[str, type[Baseline]] = {

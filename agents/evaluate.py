@@ -14,6 +14,9 @@ Metrics per policy (mean over episodes):
 * ``rms_roll_deg`` — RMS roll over each episode [deg] (``info["roll_deg"]`` when the env gives
   it, else the ``"roll"`` observation), averaged over episodes;
 * ``rms_heading_error_deg`` — RMS of the ``"heading error"`` observation [deg] (NaN without it);
+* ``rms_vertical_acceleration_mps2`` — RMS earth-vertical acceleration at the passenger point
+  [m/s²] (``info["vertical_acceleration_mps2"]`` when the env gives it, else the ``"vertical
+  acceleration"`` observation; NaN without either): what ride control is judged by;
 * ``rms_action`` — effort: RMS of the actions over steps and action entries [-];
 * ``mean_return``, ``std_return``, ``mean_length`` [steps], ``mean_cost`` (Safe-RL cost per
   episode).
@@ -56,6 +59,7 @@ METRICS: tuple[str, ...] = (
     "capsize_rate",
     "rms_roll_deg",
     "rms_heading_error_deg",
+    "rms_vertical_acceleration_mps2",
     "rms_action",
     "mean_return",
     "mean_length",
@@ -99,6 +103,8 @@ class EpisodeStats:
         RMS of all action entries over the episode [-].
     cost : NDArray
         Summed Safe-RL cost [-].
+    rms_vertical_acceleration_mps2 : NDArray
+        RMS vertical acceleration at the passenger point [m/s²] (NaN when the env shows none).
     """
 
     seeds: NDArray
@@ -109,6 +115,37 @@ class EpisodeStats:
     rms_heading_error_deg: NDArray
     rms_action: NDArray
     cost: NDArray
+    rms_vertical_acceleration_mps2: NDArray
+
+
+class _SquaredSum:
+    """Per-episode Σx² and sample count of one quantity, from ``info[info_key]`` when the env
+    gives it, else from an observation (taken before the step, times ``factor``)."""
+
+    def __init__(self, n: int, info_key: str, obs_index: int, factor: float) -> None:
+        self.info_key = info_key
+        self.obs_index = obs_index
+        self.factor = factor
+        self.total = np.zeros(n)
+        self.count = np.zeros(n)
+
+    def add(self, infos: Mapping[str, Any], obs_before: NDArray, active: NDArray) -> None:
+        """Add one control step of the still-active episodes."""
+        if self.info_key in infos:
+            values = np.asarray(infos[self.info_key], float)
+        elif self.obs_index >= 0:
+            values = obs_before[:, self.obs_index] * self.factor
+        else:
+            return
+        self.total += np.where(active, values**2, 0.0)
+        self.count += active
+
+    def rms(self) -> NDArray:
+        """RMS per episode (NaN where nothing was measured)."""
+        if self.obs_index < 0 and not self.count.any():
+            return np.full(self.total.shape, np.nan)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.sqrt(self.total / self.count)
 
 
 def _obs_index(names: Sequence[str], keyword: str) -> tuple[int, float]:
@@ -119,6 +156,19 @@ def _obs_index(names: Sequence[str], keyword: str) -> tuple[int, float]:
     if i is None:
         return -1, math.nan
     return i, (1.0 if "[deg" in names[i] else 180.0 / math.pi)
+
+
+def _vertical_acceleration_index(names: Sequence[str]) -> int:
+    """Index of the passenger vertical-acceleration observation [m/s²], −1 if absent."""
+    from agents.baselines import find_name
+
+    i = find_name(
+        names,
+        ("vertical acceleration",),
+        what="observation 'vertical acceleration'",
+        required=False,
+    )
+    return -1 if i is None else i
 
 
 def run_episodes(
@@ -179,6 +229,10 @@ def run_episodes(
         names = tuple(env.unwrapped.observation_names)
         i_roll, f_roll = _obs_index(names, "roll")
         i_head, f_head = _obs_index(names, "heading error")
+        roll = _SquaredSum(n, "roll_deg", i_roll, f_roll)
+        vertical = _SquaredSum(
+            n, "vertical_acceleration_mps2", _vertical_acceleration_index(names), 1.0
+        )
         limit = env.unwrapped.max_episode_steps
         n_act = int(np.prod(env.single_action_space.shape))
 
@@ -188,8 +242,6 @@ def run_episodes(
         lengths = np.zeros(n, dtype=np.int64)
         capsized = np.zeros(n, dtype=bool)
         cost = np.zeros(n)
-        roll_sq = np.zeros(n)
-        roll_count = np.zeros(n)
         head_sq = np.zeros(n)
         act_sq = np.zeros(n)
         state = None
@@ -206,7 +258,7 @@ def run_episodes(
             action = np.asarray(action, dtype=np.float64).reshape(n, n_act)
             if i_head >= 0:
                 head_sq += np.where(active, (obs[:, i_head] * f_head) ** 2, 0.0)
-            obs_roll = obs[:, i_roll] * f_roll if i_roll >= 0 else None
+            obs_before = np.copy(obs)  # the env may refill its observation buffer
             obs, reward, terminated, truncated, infos = env.step(np.clip(action, -1.0, 1.0))
             episode_start = np.zeros(n, dtype=bool)
             returns += np.where(active, reward, 0.0)
@@ -214,12 +266,8 @@ def run_episodes(
             act_sq += np.where(active, np.mean(np.clip(action, -1, 1) ** 2, axis=1), 0.0)
             if "cost" in infos:
                 cost += np.where(active, infos["cost"], 0.0)
-            if "roll_deg" in infos:
-                roll_sq += np.where(active, np.asarray(infos["roll_deg"], float) ** 2, 0.0)
-                roll_count += active
-            elif obs_roll is not None:
-                roll_sq += np.where(active, obs_roll**2, 0.0)
-                roll_count += active
+            roll.add(infos, obs_before, active)
+            vertical.add(infos, obs_before, active)
             done = (np.asarray(terminated) | np.asarray(truncated)) & active
             if done.any():
                 flag = infos.get("capsized", terminated)
@@ -232,18 +280,18 @@ def run_episodes(
     finally:
         env.close()
     with np.errstate(invalid="ignore", divide="ignore"):
-        rms_roll = np.sqrt(roll_sq / roll_count) if (i_roll >= 0 or roll_count.any()) else None
         return EpisodeStats(
             seeds=np.asarray(seeds),
             returns=returns,
             lengths=lengths,
             capsized=capsized,
-            rms_roll_deg=rms_roll if rms_roll is not None else np.full(n, np.nan),
+            rms_roll_deg=roll.rms(),
             rms_heading_error_deg=(
                 np.sqrt(head_sq / lengths) if i_head >= 0 else np.full(n, np.nan)
             ),
             rms_action=np.sqrt(act_sq / lengths),
             cost=cost,
+            rms_vertical_acceleration_mps2=vertical.rms(),
         )
 
 
@@ -258,6 +306,7 @@ def summarize(stats: EpisodeStats) -> dict[str, float]:
         "capsize_rate": float(np.mean(stats.capsized)),
         "rms_roll_deg": mean(stats.rms_roll_deg),
         "rms_heading_error_deg": mean(stats.rms_heading_error_deg),
+        "rms_vertical_acceleration_mps2": mean(stats.rms_vertical_acceleration_mps2),
         "rms_action": mean(stats.rms_action),
         "mean_return": float(np.mean(stats.returns)),
         "mean_length": float(np.mean(stats.lengths)),
@@ -436,6 +485,8 @@ def write_results(results: Mapping[str, Any], out_dir: str | Path, *, plot: bool
             ax.set_title(metric, fontsize=8)
             ax.tick_params(labelsize=7)
             ax.grid(axis="y", alpha=0.3)
+        for ax in axes[len(METRICS) :]:
+            ax.set_visible(False)
         fig.suptitle(
             f"{results['env_id']}: {len(results['seeds'])} episodes, seeds "
             f"{results['seeds'][0]}…{results['seeds'][-1]} (same seas for every policy)",

@@ -7,34 +7,12 @@ Heavy modules (scipy solvers, capytaine, matplotlib) are imported inside the sub
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
 
-
-def _parse_overrides(items: Sequence[str]) -> dict[str, Any]:
-    """``key=value`` pairs → kwargs (values parsed as JSON when possible, else strings)."""
-    out: dict[str, Any] = {}
-    for item in items:
-        if "=" not in item:
-            raise SystemExit(f"error: override {item!r} must look like key=value")
-        key, value = item.split("=", 1)
-        try:
-            out[key] = json.loads(value)
-        except json.JSONDecodeError:
-            out[key] = value
-    return out
-
-
-def _write_json(path: str | None, payload: dict) -> None:
-    if path is None:
-        return
-    from ship_gym.io_utils import atomic_write_text
-
-    atomic_write_text(Path(path), json.dumps(payload, indent=2, default=float))
-    print(f"wrote {path}")
+from ship_gym.cli_common import parse_overrides as _parse_overrides
+from ship_gym.cli_common import write_json as _write_json
 
 
 def _cmd_hull(args: argparse.Namespace) -> int:

@@ -14,6 +14,8 @@ import json
 import math
 from pathlib import Path
 
+from ship_gym.cli_common import add_overrides_argument, parse_overrides
+
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
     """Register ``train`` and ``evaluate`` on the ``ship-gym`` parser."""
@@ -39,13 +41,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--episodes", type=int, default=20, help="episodes per policy")
     p.add_argument("--seed", type=int, default=0, help="episode k is reset with seed + k")
     p.add_argument("--max-steps", type=int, default=None, help="override the time limit")
-    p.add_argument(
-        "--set",
-        nargs="*",
-        default=[],
-        metavar="KEY=VALUE",
-        help="env keyword arguments (JSON values), e.g. forcing_amplitude=0.04",
-    )
+    add_overrides_argument(p, "env keyword arguments (JSON values), e.g. forcing_amplitude=0.04")
     p.add_argument("--out", default="out/evaluation", help="directory for CSV, JSON and PNG")
     p.add_argument("--no-plot", action="store_true", help="skip the bar chart")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
@@ -83,7 +79,6 @@ def _cmd_train(args: argparse.Namespace) -> int:
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
     from agents.evaluate import METRICS, evaluate_policies, write_results
-    from ship_gym.cli import _parse_overrides
     from ship_gym.io_utils import atomic_write_text
 
     policies = [p for p in args.policies.split(",") if p.strip()]
@@ -92,7 +87,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         policies,
         args.episodes,
         args.seed,
-        _parse_overrides(args.set),
+        parse_overrides(args.set),
         max_steps=args.max_steps,
         progress=not args.no_progress,
     )
@@ -101,9 +96,12 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
     print(
         f"{args.env}: {args.episodes} episodes, seeds {args.seed}…{args.seed + args.episodes - 1}"
     )
-    print("policy".ljust(width) + "".join(f"{m:>24s}" for m in METRICS))
+    column = max(len(k) for k in METRICS) + 2
+    print("policy".ljust(width) + "".join(k.rjust(column) for k in METRICS))
     for label, m in results["policies"].items():
-        cells = "".join(f"{'n/a' if math.isnan(m[k]) else f'{m[k]:.4g}':>24s}" for k in METRICS)
+        cells = "".join(
+            ("n/a" if math.isnan(m[k]) else f"{m[k]:.4g}").rjust(column) for k in METRICS
+        )
         print(label.ljust(width) + cells)
     print(
         f"wrote {out / 'evaluation.csv'}, evaluation.json"

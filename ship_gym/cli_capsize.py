@@ -11,8 +11,8 @@
 from __future__ import annotations
 
 import argparse
-import json
-from pathlib import Path
+
+from ship_gym.cli_common import add_overrides_argument, parse_overrides, write_json
 
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
@@ -22,12 +22,8 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         help="capsize map: heading x Froude number (x sea state x seeds) under the autopilot",
     )
     p.add_argument("--hull", default="s175")
-    p.add_argument(
-        "--set",
-        nargs="*",
-        default=[],
-        metavar="KEY=VALUE",
-        help="loading condition / hull overrides, e.g. kg=10.1 (raises G: lower GM)",
+    add_overrides_argument(
+        p, "loading condition / hull overrides, e.g. kg=10.1 (raises G: lower GM)"
     )
     p.add_argument(
         "--headings",
@@ -74,7 +70,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         help="parametric-roll susceptibility (Mathieu check; --simulate for the 6-DOF answer)",
     )
     q.add_argument("--hull", default="s175")
-    q.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE", help="hull overrides")
+    add_overrides_argument(q, "hull overrides")
     q.add_argument("--wavelength-ratio", type=float, default=1.0, help="λ/L [-]")
     q.add_argument("--steepness", type=float, default=1.0 / 30.0, help="H/λ [-]")
     q.add_argument(
@@ -97,7 +93,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         "dead-ship", help="dead ship (no propulsion) in beam irregular seas: roll statistics"
     )
     d.add_argument("--hull", default="s175")
-    d.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE", help="hull overrides")
+    add_overrides_argument(d, "hull overrides")
     d.add_argument("--hs", type=float, default=7.0, help="significant wave height [m]")
     d.add_argument("--tp", type=float, default=15.0, help="peak period [s]")
     d.add_argument("--seeds", type=int, default=4, help="number of seeds")
@@ -108,19 +104,13 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     d.set_defaults(func=cmd_dead_ship)
 
 
-def _overrides(items: list[str]) -> dict:
-    from ship_gym.cli import _parse_overrides
-
-    return _parse_overrides(items)
-
-
 def cmd_capsize_map(args: argparse.Namespace) -> int:
     """Run (or resume) a capsize map and print its summary."""
     from ship_gym.analysis import capsize_map as cm
 
     config = cm.CapsizeMapConfig(
         hull=args.hull,
-        hull_overrides=_overrides(args.set),
+        hull_overrides=parse_overrides(args.set),
         headings_deg=tuple(args.headings),
         froude_numbers=tuple(args.froude),
         seas=tuple(cm.SeaSpec.parse(s) for s in args.sea),
@@ -155,16 +145,13 @@ def cmd_capsize_map(args: argparse.Namespace) -> int:
     if args.plot:
         print(f"wrote {cm.plot_capsize_map(result, args.plot)}")
     if args.json:
-        from ship_gym.io_utils import atomic_write_text
-
         payload = {
             "config": config.to_dict(),
             "capsize_angle_deg": result.capsize_angle_deg,
             "wall_s": result.wall_s,
             "summary": summary,
         }
-        atomic_write_text(Path(args.json), json.dumps(payload, indent=2, default=float))
-        print(f"wrote {args.json}")
+        write_json(args.json, payload)
     return 0
 
 
@@ -174,7 +161,7 @@ def cmd_parametric_roll(args: argparse.Namespace) -> int:
 
     check = ist.parametric_roll_check(
         args.hull,
-        _overrides(args.set),
+        parse_overrides(args.set),
         wavelength_ratio=args.wavelength_ratio,
         steepness=args.steepness,
         heading_deg=args.heading,
@@ -192,11 +179,7 @@ def cmd_parametric_roll(args: argparse.Namespace) -> int:
         payload["simulation"] = ist.simulation_to_dict(sim)
         if args.plot:
             print(f"wrote {ist.plot_parametric_roll(check, sim, args.plot)}")
-    if args.json:
-        from ship_gym.io_utils import atomic_write_text
-
-        atomic_write_text(Path(args.json), json.dumps(payload, indent=2, default=float))
-        print(f"wrote {args.json}")
+    write_json(args.json, payload)
     return 0
 
 
@@ -206,7 +189,7 @@ def cmd_dead_ship(args: argparse.Namespace) -> int:
 
     res = ist.dead_ship(
         args.hull,
-        _overrides(args.set),
+        parse_overrides(args.set),
         hs=args.hs,
         tp=args.tp,
         seeds=tuple(range(int(args.seeds))),
@@ -216,10 +199,5 @@ def cmd_dead_ship(args: argparse.Namespace) -> int:
     )
     print(ist.format_dead_ship(res))
     if args.json:
-        from ship_gym.io_utils import atomic_write_text
-
-        atomic_write_text(
-            Path(args.json), json.dumps(ist.dead_ship_to_dict(res), indent=2, default=float)
-        )
-        print(f"wrote {args.json}")
+        write_json(args.json, ist.dead_ship_to_dict(res))
     return 0

@@ -50,7 +50,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
 
 
 def _cmd_hydro(args: argparse.Namespace) -> int:
-    from ship_gym.cli import _parse_overrides
+    from ship_gym.cli_common import parse_overrides as _parse_overrides
     from ship_gym.hull import load_hull
     from ship_gym.hydro.bem import compute_hull_database
     from ship_gym.hydro.checks import validate_database
@@ -79,7 +79,7 @@ def _cmd_hydro(args: argparse.Namespace) -> int:
 
 
 def _cmd_kernels(args: argparse.Namespace) -> int:
-    from ship_gym.cli import _write_json
+    from ship_gym.cli_common import write_json as _write_json
     from ship_gym.hydro.database import as_arrays, load_database
     from ship_gym.hydro.retardation import (
         compute_kernels,

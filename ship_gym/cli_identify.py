@@ -13,9 +13,9 @@ the coefficients and the fit / prediction errors (:mod:`ship_gym.analysis.identi
 from __future__ import annotations
 
 import argparse
-import json
-from pathlib import Path
 from typing import TYPE_CHECKING
+
+from ship_gym.cli_common import write_json
 
 if TYPE_CHECKING:
     from ship_gym.analysis import identification as ident
@@ -110,15 +110,12 @@ def _cmd_identify(args: argparse.Namespace) -> int:
                 f"(NRMSE {w.nrmse_roll:.3f}), correlation {w.correlation_roll:.3f}"
             )
     if args.json:
-        from ship_gym.io_utils import atomic_write_text
-
         payload = {
             "csv": str(args.csv),
             "identification": result.as_dict(),
             "prediction": prediction.as_dict(),
         }
-        atomic_write_text(Path(args.json), json.dumps(payload, indent=2, default=float))
-        print(f"wrote {args.json}")
+        write_json(args.json, payload)
     if args.plot:
         _plot(record, result, prediction, args.plot)
     return 0

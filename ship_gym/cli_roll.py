@@ -16,8 +16,8 @@ suffix writes NetCDF), ``--plot`` (PNG) — all written atomically.
 from __future__ import annotations
 
 import argparse
-import json
-from pathlib import Path
+
+from ship_gym.cli_common import write_json
 
 MODELS = ("edith-terkol", "s175")
 
@@ -67,7 +67,6 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
 def _cmd_safe_basin(args: argparse.Namespace) -> int:
     from ship_gym.analysis import safe_basin as sb
     from ship_gym.dynamics.roll_equation import RollEquation
-    from ship_gym.io_utils import atomic_write_text
 
     progress = not args.no_progress
     separatrix = None
@@ -137,8 +136,7 @@ def _cmd_safe_basin(args: argparse.Namespace) -> int:
                 "integrity": curve.integrity.tolist(),
                 "safe_fraction": curve.safe_fraction.tolist(),
             }
-        atomic_write_text(Path(args.json), json.dumps(payload, indent=2, default=float))
-        print(f"wrote {args.json}")
+        write_json(args.json, payload)
     if args.csv:
         print(f"wrote {sb.write_basin(basin, args.csv)}")
     if args.plot:

@@ -50,7 +50,6 @@ import numpy as np
 from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
 if TYPE_CHECKING:
-
     from ship_gym.dynamics.ship import ShipSetup
     from ship_gym.dynamics.simulator import Simulator
 
@@ -61,6 +60,7 @@ __all__ = [
     "Cell",
     "RunOutcome",
     "SeaSpec",
+    "autopilot_setup",
     "capsize_angle_of",
     "load_results",
     "plot_capsize_map",
@@ -464,9 +464,50 @@ def _rudder_probe(sim: Simulator) -> Callable[[], float]:
     return lambda: math.nan
 
 
+def autopilot_setup(
+    hull: str,
+    hull_overrides: dict,
+    speed: float,
+    *,
+    radiation: str,
+    integrator: str,
+    dt: float,
+    database: str = "s175",
+) -> ShipSetup:
+    """The ship of the capsize studies: self-propelled, hull manoeuvring forces, rudder under the
+    heading autopilot (this map and :mod:`ship_gym.analysis.matusiak`).
+
+    Parameters
+    ----------
+    hull : str
+        Library hull; ``hull_overrides`` its loading condition (copied).
+    speed : float
+        Speed U [m/s] (the self-propulsion rpm is set for it).
+    radiation, integrator : str
+        Radiation model and time integrator (:class:`~ship_gym.dynamics.ship.ShipSetup`).
+    dt : float
+        Physics step [s].
+    database : str
+        Hydrodynamic database name or path.
+    """
+    from ship_gym.dynamics.ship import ShipSetup
+
+    return ShipSetup(
+        hull=hull,
+        hull_overrides=dict(hull_overrides),
+        database=database,
+        speed=speed,
+        radiation=radiation,  # type: ignore[arg-type]
+        integrator=integrator,  # type: ignore[arg-type]
+        dt=dt,
+        propulsion=True,
+        manoeuvring=True,
+        rudder="autopilot",
+    )
+
+
 def cell_setup(config: CapsizeMapConfig, cell: Cell) -> tuple[ShipSetup, Any, float, Any]:
     """ShipSetup, sea, wave heading β [rad] and rng of a cell."""
-    from ship_gym.dynamics.ship import ShipSetup
     from ship_gym.hull import load_hull
 
     spec = config.seas[cell.sea]
@@ -479,17 +520,14 @@ def cell_setup(config: CapsizeMapConfig, cell: Cell) -> tuple[ShipSetup, Any, fl
     )
     hull = load_hull(config.hull, **config.hull_overrides)
     speed = config.froude_numbers[cell.froude] * math.sqrt(hull.g * hull.particulars.lpp)
-    setup = ShipSetup(
-        hull=config.hull,
-        hull_overrides=dict(config.hull_overrides),
-        database=config.database,
-        speed=speed,
+    setup = autopilot_setup(
+        config.hull,
+        config.hull_overrides,
+        speed,
         radiation=config.radiation,
         integrator=config.integrator,
         dt=config.dt,
-        propulsion=True,
-        manoeuvring=True,
-        rudder="autopilot",
+        database=config.database,
     )
     return setup, sea, math.radians(config.headings_deg[cell.heading]), rng
 

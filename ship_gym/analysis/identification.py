@@ -318,14 +318,14 @@ class McCueCampbellModel:
 
     def roll_equation(self) -> RollEquation:
         """The harmonic part as a :class:`RollEquation` (the input term is not included)."""
-        return RollEquation(
-            b1=self.b_u1,
-            b3=self.b_u3,
-            c1=self.c_u1,
-            c3=self.c_u3,
-            forcing_amplitude=self.forcing_amplitude,
-            forcing_frequency=self.forcing_frequency,
-            forcing_phase=self.forcing_phase,
+        return RollEquation.mccue_campbell(
+            self.b_u1,
+            self.b_u3,
+            self.c_u1,
+            self.c_u3,
+            self.forcing_amplitude,
+            self.forcing_frequency,
+            self.forcing_phase,
         )
 
     @property

@@ -192,20 +192,18 @@ class Scenario:
         return RegularWave(height=2.0 * amplitude, wavelength=wavelength, ramp_time=self.ramp_time)
 
     def setup(self, length: float | None = None):
-        """The :class:`~ship_gym.dynamics.ship.ShipSetup` of the run."""
-        from ship_gym.dynamics.ship import ShipSetup
+        """The :class:`~ship_gym.dynamics.ship.ShipSetup` of the run (self-propelled, under the
+        heading autopilot: :func:`ship_gym.analysis.capsize_map.autopilot_setup`)."""
+        from ship_gym.analysis.capsize_map import autopilot_setup
 
         speed = speed_from_froude(self.froude, self.length() if length is None else length)
-        return ShipSetup(
-            hull=self.hull,
-            hull_overrides=self.hull_overrides,
-            speed=speed,
+        return autopilot_setup(
+            self.hull,
+            self.hull_overrides,
+            speed,
             radiation=self.radiation,
             integrator=self.integrator,
             dt=self.dt,
-            propulsion=True,
-            manoeuvring=True,
-            rudder="autopilot",
         )
 
     def build(self):

@@ -74,6 +74,22 @@ _MIN_SPEED = 1e-9  # ship_gym.forces.lifting_surface._MIN_SPEED: no force below 
 _INFLOW_RUDDER = 0  # Rudder._inflow: wake, slipstream, flow straightening
 _INFLOW_RIGID = 1  # _ControlSurfaces.inflow_velocities: rigid-body velocity, axial wake
 _THRUST_NONE, _THRUST_GIVEN, _THRUST_COEFFICIENT = 0, 1, 2
+# LiftingSurface attributes stacked over a group's surfaces, in the kernel's argument order
+_SURFACE_KERNEL_FIELDS = (
+    "position",
+    "axis",
+    "chord_direction",
+    "leading_edge_motion",
+    "area",
+    "span",
+    "rho",
+    "lift_slope",
+    "stall_angle",
+    "stall_transition",
+    "zero_lift_drag",
+    "_k_induced",
+    "normal_force_coefficient",
+)
 
 
 def _no_states(n: int) -> NDArray:
@@ -553,21 +569,9 @@ class BatchActuatedSurfaces(BatchForceModel):
         self.controller = _batch_controller(controller)
         n_ctl = 0 if self.controller is None else int(self.controller.n_states)
         self.n_states = 0 if servo is None else 1 + n_ctl
-        s = group.surfaces
-        self._geometry = (
-            np.array([sf.position for sf in s], dtype=float),
-            np.array([sf.axis for sf in s], dtype=float),
-            np.array([sf.chord_direction for sf in s], dtype=float),
-            np.array([sf.leading_edge_motion for sf in s], dtype=float),
-            np.array([sf.area for sf in s], dtype=float),
-            np.array([sf.span for sf in s], dtype=float),
-            np.array([sf.rho for sf in s], dtype=float),
-            np.array([sf.lift_slope for sf in s], dtype=float),
-            np.array([sf.stall_angle for sf in s], dtype=float),
-            np.array([sf.stall_transition for sf in s], dtype=float),
-            np.array([sf.zero_lift_drag for sf in s], dtype=float),
-            np.array([sf._k_induced for sf in s], dtype=float),
-            np.array([sf.normal_force_coefficient for sf in s], dtype=float),
+        self._geometry = tuple(
+            np.array([getattr(sf, name) for sf in group.surfaces], dtype=float)
+            for name in _SURFACE_KERNEL_FIELDS
         )
         if servo is not None:
             self._tau = max(servo.time_constant, 0.05)  # ServoSpec.rate's linear zone

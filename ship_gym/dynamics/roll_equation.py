@@ -195,6 +195,12 @@ def _rk4_kernel(
 
 
 # ------------------------------------------------------------------------------------ model
+def _roll_powers(phi: npt.ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """(φ, |φ|, φ²) as float64 arrays: the terms of the polynomial restoring [rad, rad, rad²]."""
+    x = np.asarray(phi, dtype=np.float64)
+    return x, np.abs(x), x * x
+
+
 def _finite(value: float, name: str) -> float:
     v = float(value)
     if not math.isfinite(v):
@@ -285,23 +291,23 @@ class RollEquation:
         c_u3: float,
         forcing_amplitude: float,
         forcing_frequency: float = 0.85 * EDITH_TERKOL_NATURAL_FREQUENCY,
+        forcing_phase: float = 0.0,
     ) -> RollEquation:
-        """The fitted form of McCue & Campbell eq. 2: ÿ + b_u1 ẏ + b_u3 ẏ³ + c_u1 y + c_u3 y³.
+        """The fitted form of McCue & Campbell eq. 2: ÿ + b_u1 ẏ + b_u3 ẏ³ + c_u1 y + c_u3 y³
+        = F_u sin(ωₑt + ε).
 
         Parameters
         ----------
-        b_u1 : float
-            Linear damping [1/s].
-        b_u3 : float
-            Cubic damping [s/rad²].
-        c_u1 : float
-            Linear restoring [1/s²].
-        c_u3 : float
-            Cubic restoring [1/(rad² s²)].
+        b_u1, b_u3 : float
+            Linear [1/s] and cubic [s/rad²] damping.
+        c_u1, c_u3 : float
+            Linear [1/s²] and cubic [1/(rad² s²)] restoring.
         forcing_amplitude : float
             F_u [rad/s²].
         forcing_frequency : float
             ωₑ [rad/s] (known, not fitted, in the paper).
+        forcing_phase : float
+            ε [rad].
         """
         return cls(
             b1=b_u1,
@@ -310,6 +316,7 @@ class RollEquation:
             c3=c_u3,
             forcing_amplitude=forcing_amplitude,
             forcing_frequency=forcing_frequency,
+            forcing_phase=forcing_phase,
         )
 
     # ---------------------------------------------------------------- terms
@@ -334,9 +341,7 @@ class RollEquation:
         phi : array_like
             Roll [rad].
         """
-        x = np.asarray(phi, dtype=np.float64)
-        ax = np.abs(x)
-        x2 = x * x
+        x, ax, x2 = _roll_powers(phi)
         return x * (self.c1 + self.c2 * ax + self.c3 * x2 + self.c4 * ax * x2 + self.c5 * x2 * x2)
 
     def damping(self, phidot: npt.ArrayLike) -> FloatArray:
@@ -392,9 +397,7 @@ class RollEquation:
         phi : array_like
             Roll [rad].
         """
-        x = np.asarray(phi, dtype=np.float64)
-        ax = np.abs(x)
-        x2 = x * x
+        _, ax, x2 = _roll_powers(phi)
         return x2 * (
             self.c1 / 2.0
             + self.c2 * ax / 3.0

@@ -41,6 +41,7 @@ def test_zero_policy_metrics_and_capsizes_end_episodes_early():
     m = summarize(stats)
     assert m["rms_action"] == 0.0
     assert np.isnan(m["rms_heading_error_deg"])  # RollOneDOF has no heading
+    assert np.isnan(m["rms_vertical_acceleration_mps2"])  # nor a passenger point
     # capsized episodes are exactly those shorter than the 1000-step time limit
     np.testing.assert_array_equal(stats.capsized, stats.lengths < 1000)
     assert 0.0 < m["capsize_rate"] < 1.0
@@ -68,3 +69,26 @@ def test_bad_policy_and_episode_count():
         evaluate_policies(ROLL_ID, ["zero"], episodes=0, seed=0)
     with pytest.raises(FileNotFoundError):
         evaluate_policies(ROLL_ID, ["model:/nonexistent/run"], episodes=1, seed=0)
+
+
+def test_vertical_acceleration_metric_is_the_rms_of_the_env_info():
+    """RideControl-v0 gives ``info["vertical_acceleration_mps2"]``: the metric is its RMS over
+    the episode's steps, as a single env stepped by hand gives it (same seed and arithmetic:
+    equal to rounding, rel 1e-12)."""
+    steps = 24
+    stats = run_episodes(
+        "ship_gym/RideControl-v0", lambda env: make_baseline("zero", env), [5], max_steps=steps
+    )
+    env = gymnasium.make("ship_gym/RideControl-v0", max_episode_steps=steps)
+    env.reset(seed=5)
+    squares = []
+    for _ in range(steps):
+        _, _, terminated, truncated, info = env.step(np.zeros(1, dtype=np.float32))
+        squares.append(float(info["vertical_acceleration_mps2"]) ** 2)
+        if terminated or truncated:
+            break
+    env.close()
+    expected = np.sqrt(np.mean(squares))
+    assert expected > 0.0
+    assert stats.rms_vertical_acceleration_mps2[0] == pytest.approx(expected, rel=1e-12)
+    assert summarize(stats)["rms_vertical_acceleration_mps2"] == pytest.approx(expected, rel=1e-12)

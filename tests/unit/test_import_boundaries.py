@@ -36,6 +36,7 @@ STAGES = {
     "cli_roll": 9,
     "cli_agents": 9,
     "cli_identify": 9,
+    "cli_common": 9,
 }
 
 
