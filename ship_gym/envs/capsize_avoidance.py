@@ -5,7 +5,7 @@ prediction": regular waves λ = 1.5 L, amplitude 4.5 m for L = 150 m, Fn 0.2–0
 off following seas; the A-1 container ship capsized at Fn 0.4, 30°) on the S175, scaled with
 length (amplitude 5.25 m, H ≈ 10.5 m, λ ≈ 262 m). The heading autopilot steers; the agent
 changes its set-point and the engine telegraph. The task (:class:`CapsizeAvoidanceTask`) runs on
-:class:`ship_gym.envs.ship_task.ShipTask`.
+:class:`ship_gym.envs.ship_task.S175Task`.
 """
 
 from __future__ import annotations
@@ -19,15 +19,18 @@ from numpy.typing import NDArray
 
 from ship_gym.conventions import GRAVITY
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
+from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.ship_task import (
     S175_MESH,
+    S175Task,
     SeaSampler,
-    ShipTask,
     StepStatistics,
     check_positive,
     check_range,
     check_weight,
-    s175_setup,
+    env_docstring,
+    ship_kwargs,
+    vector_env_docstring,
 )
 
 __all__ = [
@@ -37,8 +40,9 @@ __all__ = [
     "CapsizeAvoidanceVectorEnv",
 ]
 
-MAX_EPISODE_STEPS = 1500
-"""Time limit in control steps (750 s at the default control_dt = 0.5 s; Matusiak ran 720 s)."""
+MAX_EPISODE_STEPS = max_episode_steps("CapsizeAvoidance")
+"""Time limit in control steps, from the registration (750 s at the default control_dt;
+Matusiak ran 720 s)."""
 
 S175_LPP = 175.0  # [m]
 
@@ -47,7 +51,7 @@ def _wrap(angle: NDArray) -> NDArray:
     return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
-class CapsizeAvoidanceTask(ShipTask):
+class CapsizeAvoidanceTask(S175Task):
     """N capsize-avoidance episodes (see :class:`CapsizeAvoidanceEnv` for the arguments)."""
 
     def __init__(
@@ -80,6 +84,7 @@ class CapsizeAvoidanceTask(ShipTask):
         sensor_noise: float = 0.0,
         wave_preview_m: Sequence[float] = (),
     ) -> None:
+        args = dict(locals())  # the arguments, forwarded by name (ship_kwargs)
         if sea_kind not in ("regular", "irregular"):
             raise ValueError(f"sea_kind must be 'regular' or 'irregular', got {sea_kind!r}")
         ratio = check_range(
@@ -104,18 +109,9 @@ class CapsizeAvoidanceTask(ShipTask):
             froude_range = check_range("froude_range", froude_range, low=0.05, high=0.5, unit="-")
         self.progress_weight = check_weight("progress_weight", progress_weight)
         self.danger_weight = check_weight("danger_weight", danger_weight)
-        self.capsize_penalty = check_weight("capsize_penalty", capsize_penalty)
         self.action_names = (
             f"heading set-point change (-1..1 = ±{heading_rate_deg:g} deg per step)",
             f"telegraph (-1..1 = {lo:g}..{hi:g} × self-propulsion rpm at Fn {froude_number:g})",
-        )
-        setup = s175_setup(
-            froude_number=froude_number,
-            physics_dt=physics_dt_s,
-            integrator=integrator,
-            rudder="autopilot",
-            hull_mesh=hull_mesh,
-            kg=kg_m,
         )
         sea = SeaSampler(
             kind=sea_kind,
@@ -130,20 +126,15 @@ class CapsizeAvoidanceTask(ShipTask):
             speed_range = tuple(f * math.sqrt(GRAVITY * S175_LPP) for f in froude_range)
         super().__init__(
             num_envs,
-            setup=setup,
+            rudder="autopilot",
             sea=sea,
-            control_dt=control_dt_s,
-            speed_range=speed_range,  # type: ignore[arg-type]
-            gm_range=gm_range_m,
-            capsize_angle_deg=capsize_angle_deg,
-            dangerous_roll_deg=dangerous_roll_deg,
-            sensor_noise=sensor_noise,
-            wave_preview_m=wave_preview_m,
+            speed_range_mps=speed_range,  # type: ignore[arg-type]
             extra_observations=(
                 ("heading from voyage course [rad]", -math.pi, math.pi),
                 ("heading set-point from voyage course [rad]", -math.pi, math.pi),
                 ("telegraph shaft speed [rev/s]", 0.0, 20.0),
             ),
+            **ship_kwargs(args),
         )
         self.shaft_target = self.commands["shaft_speed"].copy()
         self.voyage_course = 0.0  # [rad], the initial heading (north)
@@ -181,7 +172,6 @@ class CapsizeAvoidanceTask(ShipTask):
         return {
             "progress": self.progress_weight * along / scale,
             "dangerous_roll": -self.danger_weight * stats.danger_fraction,
-            "capsize": -self.capsize_penalty * stats.newly_capsized,
         }
 
     def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
@@ -197,6 +187,26 @@ class CapsizeAvoidanceTask(ShipTask):
         return out
 
 
+_ARGUMENTS: dict[str, tuple[str, str]] = {
+    # this environment's own rows and meanings (the shared ones: SHIP_ARGUMENTS)
+    "froude_number": ("-", "reference speed (radiation, diffraction, autopilot, telegraph)"),
+    "froude_range": ("-", "initial Froude number range (None: froude_number)"),
+    "sea_kind": ("-", '"regular" or "irregular" (JONSWAP, Hs, Tp from λ)'),
+    "wave_height_range_m": ("m", "H (regular) or Hs (irregular)"),
+    "wavelength_ratio_range": ("-", "λ/Lpp (peak wavelength if irregular)"),
+    "wave_heading_range_deg": ("deg", "relative heading β (0 following seas)"),
+    "n_wave_components": ("-", "components of an irregular sea"),
+    "heading_rate_deg": ("deg", "set-point change per step at a = ±1"),
+    "max_course_deviation_deg": ("deg", "largest set-point deviation from the course"),
+    "shaft_speed_range": ("-", "telegraph range, × self-propulsion rpm"),
+    "shaft_rate_per_s": ("1/s", "shaft acceleration, × self-propulsion rpm per s"),
+    "dangerous_roll_deg": ("deg", "roll angle of the cost and the danger term"),
+    "progress_weight": ("-", "weight of the progress term"),
+    "danger_weight": ("-", "weight of the dangerous-roll term"),
+}
+
+
+@env_docstring(_ARGUMENTS)
 class CapsizeAvoidanceEnv(TaskEnv):
     """Make way along a voyage course in steep following seas without capsizing the S175.
 
@@ -226,13 +236,13 @@ class CapsizeAvoidanceEnv(TaskEnv):
 
     ## Observation Space
 
-    ``Box(float32)`` (``env.observation_names``), each entry clipped to its bound: roll [rad],
-    pitch [rad], heave [m], roll rate [rad/s], pitch rate [rad/s], heave velocity [m/s], yaw
-    rate [rad/s], surge speed [m/s], sway velocity [m/s], heading error wrap(ψ_ref − ψ) [rad],
-    cos β and sin β of the relative wave heading [-], rudder angle [rad], shaft speed [rev/s]
-    (as in :class:`ship_gym.envs.course_keeping.CourseKeepingEnv`, entries 0–13), then heading
-    from the voyage course [rad], heading set-point from the voyage course [rad], telegraph
-    target shaft speed [rev/s], and the optional wave preview [m].
+    ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
+
+    {ship_observations}
+    | 14 | heading ψ from the voyage course (wrapped) | rad | ±π |
+    | 15 | heading set-point from the voyage course (wrapped) | rad | ±π |
+    | 16 | telegraph target shaft speed | rev/s | 0 … 20 |
+    | 17… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
 
     ## Rewards
 
@@ -258,51 +268,13 @@ class CapsizeAvoidanceEnv(TaskEnv):
 
     Terminated on capsize: |φ| above the angle of vanishing stability of the episode's loading
     (66.2° for the nominal S175; ``capsize_angle_deg`` overrides) at any physics step, or a
-    diverged integration (``info["diverged"]``). Truncated after ``MAX_EPISODE_STEPS`` = 1500
-    control steps (750 s).
-
-    ## Arguments
-
-    | kwarg | default | unit | meaning |
-    |---|---|---|---|
-    | froude_number | 0.35 | - | reference speed (radiation, diffraction, autopilot, telegraph) |
-    | froude_range | (0.3, 0.4) | - | initial Froude number range (None: froude_number) |
-    | sea_kind | "regular" | - | "regular" or "irregular" (JONSWAP, Hs, Tp from λ) |
-    | wave_height_range_m | (10, 11) | m | H (regular) or Hs (irregular) |
-    | wavelength_ratio_range | (1.4, 1.6) | - | λ/Lpp (peak wavelength if irregular) |
-    | wave_heading_range_deg | (-45, 45) | deg | relative heading β (0 following seas) |
-    | n_wave_components | 40 | - | components of an irregular sea |
-    | wave_ramp_time_s | 50 | s | start-up ramp of the waves |
-    | gm_range_m | None | m | GM range of the loading (None: nominal) |
-    | kg_m | None | m | KG of the nominal loading (None: 9.55 m) |
-    | heading_rate_deg | 2 | deg | set-point change per step at a = ±1 |
-    | max_course_deviation_deg | 90 | deg | largest set-point deviation from the course |
-    | shaft_speed_range | (0.3, 1.2) | - | telegraph range, × self-propulsion rpm |
-    | shaft_rate_per_s | 0.01 | 1/s | shaft acceleration, × self-propulsion rpm per s |
-    | physics_dt_s | 0.1 | s | physics time step |
-    | control_dt_s | 0.5 | s | control step (integer multiple of physics_dt_s) |
-    | integrator | "holloway" | - | "holloway" or "rk4" |
-    | hull_mesh | (60, 12, 6, 4) | - | S175 mesh (sections, panels below/above, deck) |
-    | capsize_angle_deg | None | deg | capsize angle (None: vanishing angle) |
-    | dangerous_roll_deg | 30 | deg | roll angle of the cost and the danger term |
-    | progress_weight | 1.0 | - | weight of the progress term |
-    | danger_weight | 1.0 | - | weight of the dangerous-roll term |
-    | capsize_penalty | 100 | - | penalty paid at capsize |
-    | sensor_noise | 0 | - | multiplier of the sensor accuracies |
-    | wave_preview_m | () | m | distances ahead of O of the elevation preview |
-
-    ## Version History
-
-    * v0: initial version.
+    diverged integration (``info["diverged"]``). Truncated by the time limit:
+    {time_limit}.
     """
 
     task_class = CapsizeAvoidanceTask
 
 
 class CapsizeAvoidanceVectorEnv(TaskVectorEnv):
-    """N episodes of :class:`CapsizeAvoidanceEnv` in one BatchSimulator (same arguments).
-
-    Episode i reset with ``seed=s`` is the single environment reset with ``seed=s + i``.
-    """
-
+    __doc__ = vector_env_docstring(CapsizeAvoidanceEnv)
     task_class = CapsizeAvoidanceTask

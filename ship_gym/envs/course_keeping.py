@@ -1,6 +1,6 @@
 """``ship_gym/CourseKeeping-v0``: steer the S175 on a heading in irregular seas with its rudder.
 
-The task (:class:`CourseKeepingTask`) runs on :class:`ship_gym.envs.ship_task.ShipTask`; the
+The task (:class:`CourseKeepingTask`) runs on :class:`ship_gym.envs.ship_task.S175Task`; the
 Gymnasium faces are :class:`CourseKeepingEnv` (one episode) and :class:`CourseKeepingVectorEnv`
 (N episodes in one BatchSimulator). The environment docstring (Gymnasium v5 template) lists
 every keyword argument with its unit.
@@ -16,26 +16,27 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
+from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.ship_task import (
+    RUDDER_LIMIT_DEG,
     S175_MESH,
-    SeaSampler,
-    ShipTask,
+    S175Task,
     StepStatistics,
     check_positive,
     check_weight,
-    s175_setup,
+    env_docstring,
+    irregular_sea,
+    ship_kwargs,
+    vector_env_docstring,
 )
 
 __all__ = ["MAX_EPISODE_STEPS", "CourseKeepingEnv", "CourseKeepingTask", "CourseKeepingVectorEnv"]
 
-MAX_EPISODE_STEPS = 1000
-"""Time limit in control steps (500 s at the default control_dt = 0.5 s)."""
-
-RUDDER_LIMIT_DEG = 35.0
-"""Rudder angle limit of the servo [deg] (:data:`ship_gym.control.actuators.RUDDER_SERVO`)."""
+MAX_EPISODE_STEPS = max_episode_steps("CourseKeeping")
+"""Time limit in control steps, from the registration (500 s at the default control_dt)."""
 
 
-class CourseKeepingTask(ShipTask):
+class CourseKeepingTask(S175Task):
     """N course-keeping episodes (see :class:`CourseKeepingEnv` for the keyword arguments)."""
 
     def __init__(
@@ -70,6 +71,7 @@ class CourseKeepingTask(ShipTask):
         sensor_noise: float = 0.0,
         wave_preview_m: Sequence[float] = (),
     ) -> None:
+        args = dict(locals())  # the arguments, forwarded by name (ship_kwargs, irregular_sea)
         if rudder_mode not in ("absolute", "increment"):
             raise ValueError(f"rudder_mode must be 'absolute' or 'increment', got {rudder_mode!r}")
         self.rudder_mode = rudder_mode
@@ -94,7 +96,6 @@ class CourseKeepingTask(ShipTask):
         self.roll_scale = math.radians(
             check_positive("roll_scale_deg", roll_scale_deg, "deg", 90.0)
         )
-        self.capsize_penalty = check_weight("capsize_penalty", capsize_penalty)
         self.rudder_limit = math.radians(RUDDER_LIMIT_DEG)
         if rudder_mode == "absolute":
             self.action_names = (f"rudder command (-1..1 = ±{RUDDER_LIMIT_DEG:g} deg)",)
@@ -102,39 +103,16 @@ class CourseKeepingTask(ShipTask):
             self.action_names = (
                 f"rudder command increment (-1..1 = ±{max_rudder_increment_deg:g} deg per step)",
             )
-        setup = s175_setup(
-            froude_number=froude_number,
-            physics_dt=physics_dt_s,
-            integrator=integrator,
-            rudder="command",
-            hull_mesh=hull_mesh,
-            kg=kg_m,
-        )
-        sea = SeaSampler(
-            kind="irregular",
-            height_range=hs_range_m,
-            period_range=tp_range_s,
-            heading_range_deg=wave_heading_range_deg,
-            n_components=n_wave_components,
-            spreading_s=wave_spreading_s,
-            ramp_time=wave_ramp_time_s,
-        )
         super().__init__(
             num_envs,
-            setup=setup,
-            sea=sea,
-            control_dt=control_dt_s,
-            speed_range=speed_range_mps,
-            gm_range=gm_range_m,
-            capsize_angle_deg=capsize_angle_deg,
-            dangerous_roll_deg=dangerous_roll_deg,
-            sensor_noise=sensor_noise,
-            wave_preview_m=wave_preview_m,
+            rudder="command",
+            sea=irregular_sea(args),
             extra_observations=(
                 ("heading [rad]", -math.pi, math.pi),
                 ("heading set-point [rad]", -math.pi, math.pi),
                 ("rudder command [rad]", -self.rudder_limit, self.rudder_limit),
             ),
+            **ship_kwargs(args),
         )
 
     # ------------------------------------------------------------------ hooks
@@ -166,19 +144,27 @@ class CourseKeepingTask(ShipTask):
         )
 
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
-        e = self.heading_error()
         delta = self.rudder_angle()
         return {
-            "heading": -self.heading_weight * (e / self.heading_scale) ** 2,
+            "heading": self.heading_term(self.heading_weight, self.heading_scale),
             "rudder": -self.rudder_weight * (delta / self.rudder_limit) ** 2,
-            "roll": -self.roll_weight * stats.mean_square_roll / self.roll_scale**2,
-            "capsize": -self.capsize_penalty * stats.newly_capsized,
+            "roll": self.roll_term(stats, self.roll_weight, self.roll_scale),
         }
 
     def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
         return {"heading_error_deg": np.degrees(self.heading_error())}
 
 
+_ARGUMENTS: dict[str, tuple[str, str]] = {
+    # the rows of this environment's own keyword arguments (the shared ones: SHIP_ARGUMENTS)
+    "initial_heading_error_deg": ("deg", "set-point range at reset"),
+    "rudder_mode": ("-", '"absolute" angle or "increment" per step'),
+    "max_rudder_increment_deg": ("deg", "increment at a = ±1 (increment mode)"),
+    "rudder_weight": ("-", "weight of the rudder term"),
+}
+
+
+@env_docstring(_ARGUMENTS)
 class CourseKeepingEnv(TaskEnv):
     """Keep the S175 container ship on a heading in irregular seas with its rudder.
 
@@ -204,18 +190,7 @@ class CourseKeepingEnv(TaskEnv):
 
     ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
 
-    | # | name | unit | bound |
-    |---|---|---|---|
-    | 0 | roll φ | rad | ±π |
-    | 1 | pitch θ | rad | ±π/2 |
-    | 2 | heave (from the calm-water equilibrium, down positive) | m | ±30 |
-    | 3–5 | roll rate p, pitch rate q, heave velocity w (body) | rad/s, rad/s, m/s | 5, 5, 30 |
-    | 6 | yaw rate r | rad/s | ±2 |
-    | 7–8 | surge speed u, sway velocity v | m/s | ±30 |
-    | 9 | heading error wrap(ψ_ref − ψ) | rad | ±π |
-    | 10–11 | cos β, sin β of the mean relative wave heading β = χ − ψ | - | ±1 |
-    | 12 | rudder angle (servo) | rad | ±π/2 |
-    | 13 | shaft speed | rev/s | ±20 |
+    {ship_observations}
     | 14 | heading ψ (wrapped) | rad | ±π |
     | 15 | heading set-point ψ_ref (wrapped) | rad | ±π |
     | 16 | rudder command | rad | ±0.611 |
@@ -251,52 +226,12 @@ class CourseKeepingEnv(TaskEnv):
     Terminated when |φ| exceeds the capsize angle at any physics step (default: the angle of
     vanishing stability of the episode's loading from its GZ curve, 66.2° for the nominal S175;
     ``capsize_angle_deg`` overrides it) or when the integration diverges (``info["diverged"]``).
-    Truncated by the time limit (``MAX_EPISODE_STEPS`` = 1000 control steps = 500 s).
-
-    ## Arguments
-
-    | kwarg | default | unit | meaning |
-    |---|---|---|---|
-    | froude_number | 0.25 | - | reference speed U = Fn √(g L) (radiation, diffraction, propeller) |
-    | speed_range_mps | None | m/s | initial speed range (self-propulsion rpm); keep near U |
-    | hs_range_m | (3, 5) | m | significant wave height range |
-    | tp_range_s | (9, 12) | s | peak period range |
-    | wave_heading_range_deg | (0, 360) | deg | relative wave heading β (0 following, 180 head) |
-    | n_wave_components | 40 | - | components of the irregular sea |
-    | wave_spreading_s | None | - | cos-2s spreading exponent (None: long-crested) |
-    | wave_ramp_time_s | 30 | s | start-up ramp of the waves |
-    | gm_range_m | None | m | GM range of the loading (per episode; None: nominal) |
-    | kg_m | None | m | KG of the nominal loading (None: 9.55 m) |
-    | initial_heading_error_deg | 10 | deg | set-point range at reset |
-    | rudder_mode | "absolute" | - | "absolute" angle or "increment" per step |
-    | max_rudder_increment_deg | 5 | deg | increment at a = ±1 (increment mode) |
-    | physics_dt_s | 0.1 | s | physics time step |
-    | control_dt_s | 0.5 | s | control step (integer multiple of physics_dt_s) |
-    | integrator | "holloway" | - | "holloway" (1 evaluation/step) or "rk4" |
-    | hull_mesh | (60, 12, 6, 4) | - | S175 mesh (sections, panels below/above water, deck) |
-    | capsize_angle_deg | None | deg | capsize roll angle (None: vanishing angle of the loading) |
-    | dangerous_roll_deg | 25 | deg | roll angle of the Safe-RL cost |
-    | heading_weight | 1.0 | - | weight of the heading term |
-    | heading_scale_deg | 10 | deg | heading error scale |
-    | rudder_weight | 0.1 | - | weight of the rudder term |
-    | roll_weight | 0.1 | - | weight of the roll term |
-    | roll_scale_deg | 10 | deg | roll scale |
-    | capsize_penalty | 100 | - | penalty paid at capsize |
-    | sensor_noise | 0 | - | multiplier of the sensor accuracies |
-    | wave_preview_m | () | m | distances ahead of O of the elevation preview |
-
-    ## Version History
-
-    * v0: initial version.
+    Truncated by the time limit: {time_limit}.
     """
 
     task_class = CourseKeepingTask
 
 
 class CourseKeepingVectorEnv(TaskVectorEnv):
-    """N episodes of :class:`CourseKeepingEnv` in one BatchSimulator (same keyword arguments).
-
-    Episode i reset with ``seed=s`` is the single environment reset with ``seed=s + i``.
-    """
-
+    __doc__ = vector_env_docstring(CourseKeepingEnv)
     task_class = CourseKeepingTask

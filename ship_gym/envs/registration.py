@@ -62,6 +62,14 @@ ENTRIES: tuple[EnvEntry, ...] = (
 ENV_IDS: tuple[str, ...] = tuple(e.id for e in ENTRIES)
 
 
+def max_episode_steps(name: str) -> int:
+    """The registered time limit [control steps] of ``ship_gym/<name>-v0`` (single source)."""
+    for entry in ENTRIES:
+        if entry.name == name:
+            return entry.max_episode_steps
+    raise ValueError(f"no registered environment {name!r}; known: {[e.name for e in ENTRIES]}")
+
+
 def register_envs() -> None:
     """Register every ship_gym id with Gymnasium (idempotent)."""
     for entry in ENTRIES:

@@ -1,6 +1,6 @@
 """``ship_gym/RideControl-v0``: reduce the vertical accelerations of the S175 in head seas.
 
-The task (:class:`RideControlTask`) runs on :class:`ship_gym.envs.ship_task.ShipTask` with the
+The task (:class:`RideControlTask`) runs on :class:`ship_gym.envs.ship_task.S175Task` with the
 comfort bookkeeping of :class:`ship_gym.envs.roll_stabilization.ComfortShipTask`; the Gymnasium
 faces are :class:`RideControlEnv` and :class:`RideControlVectorEnv`.
 """
@@ -17,20 +17,23 @@ from numpy.typing import NDArray
 
 from ship_gym.envs.base import TaskEnv, TaskStep, TaskVectorEnv
 from ship_gym.envs.comfort import ComfortSample
-from ship_gym.envs.roll_stabilization import ComfortShipTask, _check_point
+from ship_gym.envs.registration import max_episode_steps
+from ship_gym.envs.roll_stabilization import ComfortShipTask
 from ship_gym.envs.ship_task import (
     S175_MESH,
-    SeaSampler,
     StepStatistics,
     check_positive,
     check_weight,
-    s175_setup,
+    env_docstring,
+    irregular_sea,
+    ship_kwargs,
+    vector_env_docstring,
 )
 
 __all__ = ["MAX_EPISODE_STEPS", "RideControlEnv", "RideControlTask", "RideControlVectorEnv"]
 
-MAX_EPISODE_STEPS = 1000
-"""Time limit in control steps (250 s at the default control_dt = 0.25 s)."""
+MAX_EPISODE_STEPS = max_episode_steps("RideControl")
+"""Time limit in control steps, from the registration (250 s at the default control_dt)."""
 
 FOIL_LIMIT_DEG = 15.0
 """T-foil angle limit of the servo [deg] (:data:`ship_gym.control.actuators.FOIL_SERVO`)."""
@@ -68,52 +71,28 @@ class RideControlTask(ComfortShipTask):
         sensor_noise: float = 0.0,
         wave_preview_m: Sequence[float] = (),
     ) -> None:
+        args = dict(locals())  # the arguments, forwarded by name (ship_kwargs, irregular_sea)
         self.vertical_weight = check_weight("vertical_weight", vertical_weight)
         self.vertical_scale = check_positive(
             "vertical_scale_mps2", vertical_scale_mps2, "m/s²", 50.0
         )
         self.effort_weight = check_weight("effort_weight", effort_weight)
-        self.capsize_penalty = check_weight("capsize_penalty", capsize_penalty)
         limit_g = check_positive("vertical_rms_limit_g", vertical_rms_limit_g, "g", 2.0)
-        tau = check_positive("comfort_time_constant_s", comfort_time_constant_s, "s", 3600.0)
-        point = _check_point("passenger_point_m", passenger_point_m)
         self.foil_limit = math.radians(FOIL_LIMIT_DEG)
         self.action_names = (f"T-foil command (-1..1 = ±{FOIL_LIMIT_DEG:g} deg, + = nose up)",)
-        setup = s175_setup(
-            froude_number=froude_number,
-            physics_dt=physics_dt_s,
-            integrator=integrator,
-            rudder="autopilot",
-            hull_mesh=hull_mesh,
-            kg=kg_m,
-        )
-        setup = dataclasses.replace(setup, t_foil="command")
-        sea = SeaSampler(
-            kind="irregular",
-            height_range=hs_range_m,
-            period_range=tp_range_s,
-            heading_range_deg=wave_heading_range_deg,
-            n_components=n_wave_components,
-            spreading_s=wave_spreading_s,
-            ramp_time=wave_ramp_time_s,
-        )
         super().__init__(
             num_envs,
-            passenger_point=point,
+            passenger_point_m=passenger_point_m,
             actuators=(("t_foil_command", "t_foil", self.foil_limit),),
-            comfort_time_constant_s=tau,
-            setup=setup,
-            sea=sea,
-            control_dt=control_dt_s,
-            speed_range=speed_range_mps,
-            capsize_angle_deg=capsize_angle_deg,
-            dangerous_roll_deg=dangerous_roll_deg,
-            sensor_noise=sensor_noise,
-            wave_preview_m=wave_preview_m,
+            comfort_time_constant_s=comfort_time_constant_s,
+            rudder="autopilot",
+            setup_changes={"t_foil": "command"},
+            sea=irregular_sea(args),
             extra_observations=(
                 ("T-foil angle [rad]", -math.pi / 2, math.pi / 2),
                 ("vertical acceleration at the passenger [m/s^2]", -30.0, 30.0),
             ),
+            **ship_kwargs(args),
         )
         self.vertical_rms_limit = limit_g * float(self.sim.hull.g)
 
@@ -132,7 +111,6 @@ class RideControlTask(ComfortShipTask):
             "vertical": -self.vertical_weight
             * (sample.weighted_vertical / self.vertical_scale) ** 2,
             "effort": -self.effort_weight * effort,
-            "capsize": -self.capsize_penalty * stats.newly_capsized,
         }
 
     def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
@@ -151,6 +129,20 @@ class RideControlTask(ComfortShipTask):
         return dataclasses.replace(out, cost=np.where(excess, 1.0, out.cost))
 
 
+_ARGUMENTS: dict[str, tuple[str, str]] = {
+    # this environment's own rows and meanings (the shared ones: SHIP_ARGUMENTS)
+    "froude_number": ("-", "reference speed U = Fn √(g L) (12.4 m/s)"),
+    "wave_heading_range_deg": ("deg", "relative wave heading β (180 = head seas)"),
+    "kg_m": ("m", "KG of the loading (None: 9.55 m)"),
+    "dangerous_roll_deg": ("deg", "roll angle of the roll part of the cost"),
+    "vertical_weight": ("-", "weight of the weighted vertical acceleration"),
+    "vertical_scale_mps2": ("m/s²", "its scale"),
+    "effort_weight": ("-", "weight of the foil effort"),
+    "vertical_rms_limit_g": ("g", "RMS vertical acceleration limit of the cost"),
+}
+
+
+@env_docstring(_ARGUMENTS)
 class RideControlEnv(TaskEnv):
     """Reduce the vertical accelerations of the S175 in head and bow seas with a bow T-foil.
 
@@ -179,18 +171,7 @@ class RideControlEnv(TaskEnv):
 
     ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
 
-    | # | name | unit | bound |
-    |---|---|---|---|
-    | 0 | roll φ | rad | ±π |
-    | 1 | pitch θ | rad | ±π/2 |
-    | 2 | heave (from the calm-water equilibrium, down positive) | m | ±30 |
-    | 3–5 | roll rate p, pitch rate q, heave velocity w (body) | rad/s, rad/s, m/s | 5, 5, 30 |
-    | 6 | yaw rate r | rad/s | ±2 |
-    | 7–8 | surge speed u, sway velocity v | m/s | ±30 |
-    | 9 | heading error wrap(ψ_ref − ψ) | rad | ±π |
-    | 10–11 | cos β, sin β of the mean relative wave heading β = χ − ψ | - | ±1 |
-    | 12 | rudder angle (servo, autopilot) | rad | ±π/2 |
-    | 13 | shaft speed | rev/s | ±20 |
+    {ship_observations}
     | 14 | T-foil angle (servo) | rad | ±π/2 |
     | 15 | earth-vertical acceleration at the passenger point (down positive) | m/s² | ±30 |
     | 16… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
@@ -226,50 +207,13 @@ class RideControlEnv(TaskEnv):
     ## Episode End
 
     Terminated when |φ| exceeds the capsize angle or the integration diverges (a safeguard: in
-    head seas the S175 does not come near it). Truncated by the time limit
-    (``MAX_EPISODE_STEPS`` = 1000 control steps = 250 s).
-
-    ## Arguments
-
-    | kwarg | default | unit | meaning |
-    |---|---|---|---|
-    | froude_number | 0.3 | - | reference speed U = Fn √(g L) (12.4 m/s) |
-    | speed_range_mps | None | m/s | initial speed range (self-propulsion rpm); keep near U |
-    | hs_range_m | (2, 4) | m | significant wave height range |
-    | tp_range_s | (7, 11) | s | peak period range |
-    | wave_heading_range_deg | (150, 210) | deg | relative wave heading β (180 = head seas) |
-    | n_wave_components | 40 | - | components of the irregular sea |
-    | wave_spreading_s | None | - | cos-2s spreading exponent (None: long-crested) |
-    | wave_ramp_time_s | 20 | s | start-up ramp of the waves |
-    | kg_m | None | m | KG of the loading (None: 9.55 m) |
-    | passenger_point_m | (50, 0, −10) | m | body-frame passenger position (z down) |
-    | physics_dt_s | 0.05 | s | physics time step |
-    | control_dt_s | 0.25 | s | control step (integer multiple of physics_dt_s) |
-    | integrator | "holloway" | - | "holloway" (1 evaluation/step) or "rk4" |
-    | hull_mesh | (60, 12, 6, 4) | - | S175 mesh (sections, panels below/above water, deck) |
-    | capsize_angle_deg | None | deg | capsize roll angle (None: vanishing angle) |
-    | dangerous_roll_deg | 25 | deg | roll angle of the roll part of the cost |
-    | vertical_weight | 1.0 | - | weight of the weighted vertical acceleration |
-    | vertical_scale_mps2 | 1.0 | m/s² | its scale |
-    | effort_weight | 0.05 | - | weight of the foil effort |
-    | capsize_penalty | 100 | - | penalty paid at capsize |
-    | vertical_rms_limit_g | 0.05 | g | RMS vertical acceleration limit of the cost |
-    | comfort_time_constant_s | 30 | s | time constant of the running acceleration RMS |
-    | sensor_noise | 0 | - | multiplier of the sensor accuracies |
-    | wave_preview_m | () | m | distances ahead of O of the elevation preview |
-
-    ## Version History
-
-    * v0: initial version.
+    head seas the S175 does not come near it). Truncated by the time limit:
+    {time_limit}.
     """
 
     task_class = RideControlTask
 
 
 class RideControlVectorEnv(TaskVectorEnv):
-    """N episodes of :class:`RideControlEnv` in one BatchSimulator (same arguments).
-
-    Episode i reset with ``seed=s`` is the single environment reset with ``seed=s + i``.
-    """
-
+    __doc__ = vector_env_docstring(RideControlEnv)
     task_class = RideControlTask

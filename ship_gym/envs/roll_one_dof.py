@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from ship_gym.dynamics.roll_equation import EDITH_TERKOL_NATURAL_FREQUENCY, RollEquation
 from ship_gym.envs.base import BatchedTask, TaskEnv, TaskStep, TaskVectorEnv
+from ship_gym.envs.registration import max_episode_steps
 
 if TYPE_CHECKING:
     from ship_gym.envs.rendering import RenderSnapshot
@@ -32,8 +33,9 @@ __all__ = [
     "RollOneDOFVectorEnv",
 ]
 
-#: Time limit in control steps (500 s at the default control_dt = 0.5 s, ≈ 50 roll periods).
-MAX_EPISODE_STEPS = 1000
+#: Time limit in control steps, from the registration (500 s at the default control_dt = 0.5 s,
+#: ≈ 50 roll periods).
+MAX_EPISODE_STEPS = max_episode_steps("RollOneDOF")
 
 #: Observation bounds: roll [rad] and roll rate [rad/s] (the state is held at the capsize angle
 #: once capsized, so it stays far inside these in operation).
@@ -392,7 +394,8 @@ class RollOneDOFEnv(TaskEnv):
     Episode End
     -----------
     Terminated when |φ| exceeds ``capsize_angle`` at any physics step (capsize; the state is held
-    there). Truncated after ``MAX_EPISODE_STEPS`` = 1000 control steps (500 s by default).
+    there). Truncated after ``MAX_EPISODE_STEPS`` control steps, the registered time limit
+    (:data:`ship_gym.envs.registration.ENTRIES`: 500 s at the default ``control_dt``).
 
     Arguments
     ---------

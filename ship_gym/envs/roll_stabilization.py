@@ -1,6 +1,6 @@
 """``ship_gym/RollStabilization-v0``: reduce the roll of the S175 in beam and quartering seas.
 
-The task (:class:`RollStabilizationTask`) runs on :class:`ship_gym.envs.ship_task.ShipTask` with
+The task (:class:`RollStabilizationTask`) runs on :class:`ship_gym.envs.ship_task.S175Task` with
 the comfort bookkeeping of :class:`ComfortShipTask` (accelerations at a passenger point,
 :mod:`ship_gym.envs.comfort`); the Gymnasium faces are :class:`RollStabilizationEnv` (one
 episode) and :class:`RollStabilizationVectorEnv` (N episodes in one BatchSimulator). The
@@ -9,7 +9,6 @@ environment docstring (Gymnasium v5 template) lists every keyword argument with 
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Sequence
 from typing import Any, Literal
@@ -19,14 +18,19 @@ from numpy.typing import NDArray
 
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
 from ship_gym.envs.comfort import ComfortSample, PassengerComfort
+from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.ship_task import (
+    RUDDER_LIMIT_DEG,
     S175_MESH,
-    SeaSampler,
-    ShipTask,
+    S175Task,
     StepStatistics,
+    check_point,
     check_positive,
     check_weight,
-    s175_setup,
+    env_docstring,
+    irregular_sea,
+    ship_kwargs,
+    vector_env_docstring,
 )
 
 __all__ = [
@@ -37,36 +41,21 @@ __all__ = [
     "RollStabilizationVectorEnv",
 ]
 
-MAX_EPISODE_STEPS = 1000
-"""Time limit in control steps (500 s at the default control_dt = 0.5 s)."""
+MAX_EPISODE_STEPS = max_episode_steps("RollStabilization")
+"""Time limit in control steps, from the registration (500 s at the default control_dt)."""
 
 FIN_LIMIT_DEG = 25.0
 """Fin angle limit of the servo [deg] (:data:`ship_gym.control.actuators.FIN_SERVO`)."""
 
-RUDDER_LIMIT_DEG = 35.0
-"""Rudder angle limit of the servo [deg] (:data:`ship_gym.control.actuators.RUDDER_SERVO`)."""
 
-
-def _check_point(name: str, value: Any) -> NDArray:
-    try:
-        point = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"{name} must be a body-frame point (x, y, z) [m], got {value!r}"
-        ) from None
-    if point.shape != (3,) or not np.all(np.isfinite(point)) or np.any(np.abs(point) > 200.0):
-        raise ValueError(f"{name} must be a finite (x, y, z) within ±200 m [m], got {value!r}")
-    return point
-
-
-class ComfortShipTask(ShipTask):
-    """A :class:`ShipTask` with actuated surfaces and comfort sampling at a passenger point.
+class ComfortShipTask(S175Task):
+    """An :class:`S175Task` with actuated surfaces and comfort sampling at a passenger point.
 
     Parameters
     ----------
     num_envs : int
         N.
-    passenger_point : array_like
+    passenger_point_m : array_like
         (3,) body-frame position of the passenger [m] (z down: negative above the waterline).
     actuators : sequence of (command key, force-model name, limit [rad])
         Commanded surfaces, in action order after any the subclass handles itself: action a
@@ -74,18 +63,20 @@ class ComfortShipTask(ShipTask):
     comfort_time_constant_s : float
         τ of the running RMS of the accelerations [s].
     **kwargs
-        :class:`ShipTask` arguments.
+        :class:`S175Task` arguments.
     """
 
     def __init__(
         self,
         num_envs: int,
         *,
-        passenger_point: NDArray,
+        passenger_point_m: Sequence[float],
         actuators: Sequence[tuple[str, str, float]],
         comfort_time_constant_s: float,
         **kwargs: Any,
     ) -> None:
+        tau = check_positive("comfort_time_constant_s", comfort_time_constant_s, "s", 3600.0)
+        passenger_point = check_point("passenger_point_m", passenger_point_m)
         super().__init__(num_envs, **kwargs)
         n = self.num_envs
         self.passenger_point = passenger_point
@@ -101,7 +92,7 @@ class ComfortShipTask(ShipTask):
             n,
             self.control_dt,
             passenger_point,
-            rms_time_constant=comfort_time_constant_s,
+            rms_time_constant=tau,
             g=float(self.sim.hull.g),
         )
         self.sample = self._zero_sample()
@@ -196,6 +187,7 @@ class RollStabilizationTask(ComfortShipTask):
         sensor_noise: float = 0.0,
         wave_preview_m: Sequence[float] = (),
     ) -> None:
+        args = dict(locals())  # the arguments, forwarded by name (ship_kwargs, irregular_sea)
         if not isinstance(rudder_roll_stabilization, bool):
             raise ValueError(
                 f"rudder_roll_stabilization must be a bool, got {rudder_roll_stabilization!r}"
@@ -214,51 +206,25 @@ class RollStabilizationTask(ComfortShipTask):
         self.heading_scale = math.radians(
             check_positive("heading_scale_deg", heading_scale_deg, "deg", 180.0)
         )
-        self.capsize_penalty = check_weight("capsize_penalty", capsize_penalty)
-        tau = check_positive("comfort_time_constant_s", comfort_time_constant_s, "s", 3600.0)
-        point = _check_point("passenger_point_m", passenger_point_m)
         fin_limit = math.radians(FIN_LIMIT_DEG)
         self.rudder_limit = math.radians(RUDDER_LIMIT_DEG)
         names = [f"fin command (-1..1 = ±{FIN_LIMIT_DEG:g} deg, + = starboard down)"]
         if rudder_roll_stabilization:
             names.append(f"rudder command (-1..1 = ±{RUDDER_LIMIT_DEG:g} deg, + = to starboard)")
         self.action_names = tuple(names)
-        setup = s175_setup(
-            froude_number=froude_number,
-            physics_dt=physics_dt_s,
-            integrator=integrator,
-            rudder="command" if rudder_roll_stabilization else "autopilot",
-            hull_mesh=hull_mesh,
-            kg=kg_m,
-        )
-        setup = dataclasses.replace(setup, fins="command")
-        sea = SeaSampler(
-            kind="irregular",
-            height_range=hs_range_m,
-            period_range=tp_range_s,
-            heading_range_deg=wave_heading_range_deg,
-            n_components=n_wave_components,
-            spreading_s=wave_spreading_s,
-            ramp_time=wave_ramp_time_s,
-        )
         super().__init__(
             num_envs,
-            passenger_point=point,
+            passenger_point_m=passenger_point_m,
             actuators=(("fins_command", "roll_fins", fin_limit),),
-            comfort_time_constant_s=tau,
-            setup=setup,
-            sea=sea,
-            control_dt=control_dt_s,
-            speed_range=speed_range_mps,
-            gm_range=gm_range_m,
-            capsize_angle_deg=capsize_angle_deg,
-            dangerous_roll_deg=dangerous_roll_deg,
-            sensor_noise=sensor_noise,
-            wave_preview_m=wave_preview_m,
+            comfort_time_constant_s=comfort_time_constant_s,
+            rudder="command" if rudder_roll_stabilization else "autopilot",
+            setup_changes={"fins": "command"},
+            sea=irregular_sea(args),
             extra_observations=(
                 ("fin angle [rad]", -math.pi / 2, math.pi / 2),
                 ("lateral specific force at the passenger [m/s^2]", -30.0, 30.0),
             ),
+            **ship_kwargs(args),
         )
         self.fin_limit = fin_limit
 
@@ -279,16 +245,13 @@ class RollStabilizationTask(ComfortShipTask):
         if self.rudder_roll_stabilization:
             effort = effort + (self.rudder_angle() / self.rudder_limit) ** 2
         terms = {
-            "roll": -self.roll_weight * stats.mean_square_roll / self.roll_scale**2,
+            "roll": self.roll_term(stats, self.roll_weight, self.roll_scale),
             "roll_rate": -self.roll_rate_weight * (p / self.roll_rate_scale) ** 2,
             "lateral": -self.lateral_weight * (sample.lateral / self.lateral_scale) ** 2,
             "effort": -self.effort_weight * effort,
         }
         if self.rudder_roll_stabilization:
-            terms["heading"] = (
-                -self.heading_weight * (self.heading_error() / self.heading_scale) ** 2
-            )
-        terms["capsize"] = -self.capsize_penalty * stats.newly_capsized
+            terms["heading"] = self.heading_term(self.heading_weight, self.heading_scale)
         return terms
 
     def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
@@ -299,6 +262,20 @@ class RollStabilizationTask(ComfortShipTask):
         }
 
 
+_ARGUMENTS: dict[str, tuple[str, str]] = {
+    # this environment's own rows and meanings (the shared ones: SHIP_ARGUMENTS)
+    "tp_range_s": ("s", "peak period range (roll resonance near 18 s)"),
+    "wave_heading_range_deg": ("deg", "relative wave heading β (90 = beam seas)"),
+    "rudder_roll_stabilization": ("-", "the rudder is a second action (no autopilot)"),
+    "roll_rate_weight": ("-", "weight of the roll-rate term"),
+    "roll_rate_scale_dps": ("deg/s", "roll-rate scale"),
+    "lateral_weight": ("-", "weight of the lateral-force term"),
+    "lateral_scale_mps2": ("m/s²", "lateral specific force scale"),
+    "heading_weight": ("-", "weight of the heading term (rudder roll stabilisation)"),
+}
+
+
+@env_docstring(_ARGUMENTS)
 class RollStabilizationEnv(TaskEnv):
     """Reduce the roll of the S175 container ship in beam and quartering seas with roll fins.
 
@@ -327,18 +304,7 @@ class RollStabilizationEnv(TaskEnv):
 
     ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
 
-    | # | name | unit | bound |
-    |---|---|---|---|
-    | 0 | roll φ | rad | ±π |
-    | 1 | pitch θ | rad | ±π/2 |
-    | 2 | heave (from the calm-water equilibrium, down positive) | m | ±30 |
-    | 3–5 | roll rate p, pitch rate q, heave velocity w (body) | rad/s, rad/s, m/s | 5, 5, 30 |
-    | 6 | yaw rate r | rad/s | ±2 |
-    | 7–8 | surge speed u, sway velocity v | m/s | ±30 |
-    | 9 | heading error wrap(ψ_ref − ψ) | rad | ±π |
-    | 10–11 | cos β, sin β of the mean relative wave heading β = χ − ψ | - | ±1 |
-    | 12 | rudder angle (servo) | rad | ±π/2 |
-    | 13 | shaft speed | rev/s | ±20 |
+    {ship_observations}
     | 14 | fin angle (servo) | rad | ±π/2 |
     | 15 | lateral specific force f_y at the passenger point | m/s² | ±30 |
     | 16… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
@@ -377,57 +343,13 @@ class RollStabilizationEnv(TaskEnv):
 
     Terminated when |φ| exceeds the capsize angle at any physics step (default: the angle of
     vanishing stability of the episode's loading; ``capsize_angle_deg`` overrides it) or when
-    the integration diverges (``info["diverged"]``). Truncated by the time limit
-    (``MAX_EPISODE_STEPS`` = 1000 control steps = 500 s).
-
-    ## Arguments
-
-    | kwarg | default | unit | meaning |
-    |---|---|---|---|
-    | froude_number | 0.25 | - | reference speed U = Fn √(g L) |
-    | speed_range_mps | None | m/s | initial speed range (self-propulsion rpm); keep near U |
-    | hs_range_m | (2, 5) | m | significant wave height range |
-    | tp_range_s | (9, 16) | s | peak period range (roll resonance near 18 s) |
-    | wave_heading_range_deg | (30, 150) | deg | relative wave heading β (90 = beam seas) |
-    | n_wave_components | 40 | - | components of the irregular sea |
-    | wave_spreading_s | None | - | cos-2s spreading exponent (None: long-crested) |
-    | wave_ramp_time_s | 30 | s | start-up ramp of the waves |
-    | gm_range_m | None | m | GM range of the loading (per episode; None: nominal) |
-    | kg_m | None | m | KG of the nominal loading (None: 9.55 m) |
-    | rudder_roll_stabilization | False | - | the rudder is a second action (no autopilot) |
-    | passenger_point_m | (−50, 10, −15) | m | body-frame passenger position (z down) |
-    | physics_dt_s | 0.1 | s | physics time step |
-    | control_dt_s | 0.5 | s | control step (integer multiple of physics_dt_s) |
-    | integrator | "holloway" | - | "holloway" (1 evaluation/step) or "rk4" |
-    | hull_mesh | (60, 12, 6, 4) | - | S175 mesh (sections, panels below/above water, deck) |
-    | capsize_angle_deg | None | deg | capsize roll angle (None: vanishing angle) |
-    | dangerous_roll_deg | 25 | deg | roll angle of the Safe-RL cost |
-    | roll_weight | 1.0 | - | weight of the roll term |
-    | roll_scale_deg | 5 | deg | roll scale |
-    | roll_rate_weight | 0.2 | - | weight of the roll-rate term |
-    | roll_rate_scale_dps | 2 | deg/s | roll-rate scale |
-    | lateral_weight | 0.5 | - | weight of the lateral-force term |
-    | lateral_scale_mps2 | 1.0 | m/s² | lateral specific force scale |
-    | effort_weight | 0.05 | - | weight of the actuator effort |
-    | heading_weight | 0.5 | - | weight of the heading term (rudder roll stabilisation) |
-    | heading_scale_deg | 10 | deg | heading error scale |
-    | capsize_penalty | 100 | - | penalty paid at capsize |
-    | comfort_time_constant_s | 60 | s | time constant of the running acceleration RMS |
-    | sensor_noise | 0 | - | multiplier of the sensor accuracies |
-    | wave_preview_m | () | m | distances ahead of O of the elevation preview |
-
-    ## Version History
-
-    * v0: initial version.
+    the integration diverges (``info["diverged"]``). Truncated by the time limit:
+    {time_limit}.
     """
 
     task_class = RollStabilizationTask
 
 
 class RollStabilizationVectorEnv(TaskVectorEnv):
-    """N episodes of :class:`RollStabilizationEnv` in one BatchSimulator (same arguments).
-
-    Episode i reset with ``seed=s`` is the single environment reset with ``seed=s + i``.
-    """
-
+    __doc__ = vector_env_docstring(RollStabilizationEnv)
     task_class = RollStabilizationTask

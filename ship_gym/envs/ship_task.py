@@ -37,8 +37,13 @@ Python loop in :meth:`ShipTask.step`):
 * **rendering** — :meth:`ShipTask.snapshot` (profile/section elevations from the wave field and a
   ring buffer of roll, pitch, heave and heading).
 
-Subclasses (:mod:`ship_gym.envs.course_keeping`, :mod:`ship_gym.envs.capsize_avoidance`) define
-the actions → commands mapping, the extra observations and the reward terms.
+:class:`S175Task` builds a ShipTask of the S175 from the keyword arguments every ship
+environment shares (:data:`SHIP_ARGUMENTS`). Its subclasses
+(:mod:`ship_gym.envs.course_keeping`, :mod:`ship_gym.envs.capsize_avoidance`,
+:mod:`ship_gym.envs.roll_stabilization`, :mod:`ship_gym.envs.ride_control`) define the actions →
+commands mapping, the extra observations and the reward terms; their environment docstrings are
+composed with :func:`env_docstring` from the shared pieces written once here (the observation
+table of the common entries, the keyword table rows, the registered time limit).
 
 Conventions (:mod:`ship_gym.conventions`): η = (x, y, z, φ, θ, ψ) of O in NED (z down), ν =
 (u, v, w, p, q, r) in the body frame; the ship starts heading north (ψ = 0) and the waves travel
@@ -49,11 +54,14 @@ from __future__ import annotations
 
 import abc
 import copy
+import dataclasses
+import inspect
 import math
-from collections.abc import Mapping, Sequence
+import re
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, Literal, TypeVar
 
 import numpy as np
 from gymnasium import spaces
@@ -61,6 +69,7 @@ from numpy.typing import NDArray
 
 from ship_gym.conventions import GRAVITY
 from ship_gym.envs.base import BatchedTask, TaskStep
+from ship_gym.envs.registration import max_episode_steps
 
 if TYPE_CHECKING:
     from ship_gym.dynamics.batch import BatchSimulator
@@ -69,22 +78,35 @@ if TYPE_CHECKING:
     from ship_gym.waves.wave_field import WaveField
 
 __all__ = [
+    "RUDDER_LIMIT_DEG",
     "S175_MESH",
     "SENSOR_NOISE_STD",
+    "SHIP_ARGUMENTS",
+    "SHIP_KWARGS",
+    "SHIP_OBSERVATION_TABLE",
     "LoadingCondition",
+    "S175Task",
     "SeaSampler",
     "ShipTask",
     "StepStatistics",
+    "check_point",
     "check_positive",
     "check_range",
     "check_weight",
+    "env_docstring",
+    "irregular_sea",
     "loading_condition",
     "prototype_simulator",
     "s175_setup",
+    "ship_kwargs",
+    "vector_env_docstring",
 ]
 
 S175_MESH: tuple[int, int, int, int] = (60, 12, 6, 4)
 """Default S175 mesh resolution (n_sections, n_below, n_above, n_deck): 2400 panels."""
+
+RUDDER_LIMIT_DEG = 35.0
+"""Rudder angle limit of the servo [deg] (:data:`ship_gym.control.actuators.RUDDER_SERVO`)."""
 
 _TWO_PI = 2.0 * math.pi
 
@@ -446,6 +468,9 @@ class ShipTask(BatchedTask, abc.ABC):
         Samples of the rendering history (one per control step).
     extra_observations : sequence of (name, low, high)
         The subclass's observation entries (appended after the common ones).
+    capsize_penalty : float
+        Reward ``capsize`` = −capsize_penalty in the control step the ship capsizes [-], the last
+        of the reward terms (after the subclass's :meth:`_reward_terms`).
     """
 
     setup: ShipSetup
@@ -466,11 +491,13 @@ class ShipTask(BatchedTask, abc.ABC):
         wave_preview_m: Sequence[float] = (),
         history_length: int = 240,
         extra_observations: Sequence[tuple[str, float, float]] = (),
+        capsize_penalty: float = 0.0,
     ) -> None:
         super().__init__(num_envs)
         n = self.num_envs
         self.setup = setup
         self.sea = sea
+        self.capsize_penalty = check_weight("capsize_penalty", capsize_penalty)
         # --- time steps
         dt = float(setup.dt)
         if not (isinstance(control_dt, int | float) and math.isfinite(control_dt)):
@@ -617,7 +644,8 @@ class ShipTask(BatchedTask, abc.ABC):
 
     @abc.abstractmethod
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
-        """Weighted reward terms (N,) of the control step just taken."""
+        """Weighted reward terms (N,) of the control step just taken (without ``capsize``,
+        which :meth:`step` appends)."""
 
     def _extra_observations(self) -> NDArray:
         """(N, n_extra) task observations (in the order of ``extra_observations``)."""
@@ -750,6 +778,7 @@ class ShipTask(BatchedTask, abc.ABC):
         self._last_stats = stats
         self.episode_steps += 1
         terms = self._reward_terms(stats)
+        terms["capsize"] = -self.capsize_penalty * stats.newly_capsized
         self._record_history(np.arange(n))
         self._obs = self._noisy(self._clean_observations(), np.arange(n))
         info = {
@@ -977,3 +1006,303 @@ def check_positive(name: str, value: Any, unit: str, high: float = math.inf) -> 
     ):
         raise ValueError(f"{name} must be in (0, {high}] [{unit}], got {value!r}")
     return float(value)
+
+
+def check_point(name: str, value: Any) -> NDArray:
+    """A finite body-frame point (x, y, z) within ±200 m [m], else ValueError."""
+    try:
+        point = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"{name} must be a body-frame point (x, y, z) [m], got {value!r}"
+        ) from None
+    if point.shape != (3,) or not np.all(np.isfinite(point)) or np.any(np.abs(point) > 200.0):
+        raise ValueError(f"{name} must be a finite (x, y, z) within ±200 m [m], got {value!r}")
+    return point
+
+
+# =============================================================================================
+# the S175 task built from the environments' shared keyword arguments
+# =============================================================================================
+SHIP_KWARGS: tuple[str, ...] = (
+    "froude_number",
+    "speed_range_mps",
+    "gm_range_m",
+    "kg_m",
+    "physics_dt_s",
+    "control_dt_s",
+    "integrator",
+    "hull_mesh",
+    "capsize_angle_deg",
+    "dangerous_roll_deg",
+    "capsize_penalty",
+    "sensor_noise",
+    "wave_preview_m",
+)
+"""The environment keyword arguments :class:`S175Task` takes as they are (:func:`ship_kwargs`)."""
+
+
+def ship_kwargs(values: Mapping[str, Any]) -> dict[str, Any]:
+    """The :data:`SHIP_KWARGS` among an environment task's arguments (its ``locals()``).
+
+    Every ship environment task declares its keyword arguments explicitly (typed, with units,
+    with its own defaults) and forwards the shared ones to :class:`S175Task` by name with this.
+    """
+    return {key: values[key] for key in SHIP_KWARGS if key in values}
+
+
+def irregular_sea(values: Mapping[str, Any]) -> SeaSampler:
+    """The JONSWAP :class:`SeaSampler` of an environment task's irregular-sea arguments
+    ``hs_range_m``, ``tp_range_s``, ``wave_heading_range_deg``, ``n_wave_components``,
+    ``wave_spreading_s`` and ``wave_ramp_time_s`` (in ``values``, its ``locals()``)."""
+    return SeaSampler(
+        kind="irregular",
+        height_range=values["hs_range_m"],
+        period_range=values["tp_range_s"],
+        heading_range_deg=values["wave_heading_range_deg"],
+        n_components=values["n_wave_components"],
+        spreading_s=values["wave_spreading_s"],
+        ramp_time=values["wave_ramp_time_s"],
+    )
+
+
+class S175Task(ShipTask, abc.ABC):
+    """A :class:`ShipTask` of the S175 (:func:`s175_setup`) from the shared environment
+    keyword arguments (:data:`SHIP_ARGUMENTS` for their meaning and units).
+
+    Parameters
+    ----------
+    num_envs : int
+        Number of episodes N.
+    rudder : {"command", "autopilot"}
+        Rudder following ``"rudder_command"`` or the PID heading autopilot.
+    sea : SeaSampler
+        Per-episode sea.
+    froude_number, physics_dt_s, integrator, hull_mesh, kg_m
+        :func:`s175_setup` arguments (Fn [-], dt [s], scheme, mesh, KG [m]).
+    control_dt_s : float
+        Control step [s], an integer multiple of ``physics_dt_s``.
+    speed_range_mps : tuple of float or None
+        Initial speed range [m/s] (None: the reference speed).
+    gm_range_m : tuple of float or None
+        GM range [m] of the episodes' loading (None: nominal).
+    capsize_angle_deg, dangerous_roll_deg, capsize_penalty, sensor_noise, wave_preview_m
+        :class:`ShipTask` arguments.
+    setup_changes : mapping, optional
+        :class:`ship_gym.dynamics.ship.ShipSetup` fields replaced after :func:`s175_setup`
+        (e.g. ``{"fins": "command"}``).
+    extra_observations : sequence of (name, low, high)
+        The subclass's observation entries.
+    """
+
+    def __init__(
+        self,
+        num_envs: int,
+        *,
+        rudder: Literal["command", "autopilot"],
+        sea: SeaSampler,
+        froude_number: float,
+        physics_dt_s: float,
+        control_dt_s: float,
+        integrator: Literal["holloway", "rk4"],
+        hull_mesh: Sequence[int],
+        capsize_angle_deg: float | None,
+        dangerous_roll_deg: float,
+        capsize_penalty: float,
+        sensor_noise: float,
+        wave_preview_m: Sequence[float],
+        kg_m: float | None = None,
+        speed_range_mps: tuple[float, float] | None = None,
+        gm_range_m: tuple[float, float] | None = None,
+        setup_changes: Mapping[str, Any] | None = None,
+        extra_observations: Sequence[tuple[str, float, float]] = (),
+    ) -> None:
+        setup = s175_setup(
+            froude_number=froude_number,
+            physics_dt=physics_dt_s,
+            integrator=integrator,
+            rudder=rudder,
+            hull_mesh=hull_mesh,
+            kg=kg_m,
+        )
+        if setup_changes:
+            setup = dataclasses.replace(setup, **setup_changes)
+        super().__init__(
+            num_envs,
+            setup=setup,
+            sea=sea,
+            control_dt=control_dt_s,
+            speed_range=speed_range_mps,
+            gm_range=gm_range_m,
+            capsize_angle_deg=capsize_angle_deg,
+            dangerous_roll_deg=dangerous_roll_deg,
+            sensor_noise=sensor_noise,
+            wave_preview_m=wave_preview_m,
+            extra_observations=extra_observations,
+            capsize_penalty=capsize_penalty,
+        )
+
+    # ------------------------------------------------------------------ shared reward terms
+    def roll_term(self, stats: StepStatistics, weight: float, scale: float) -> NDArray:
+        """−weight · mean(φ²)/scale² over the physics steps of the control step (scale [rad])."""
+        return -weight * stats.mean_square_roll / scale**2
+
+    def heading_term(self, weight: float, scale: float) -> NDArray:
+        """−weight · (e/scale)², e the wrapped heading error (scale [rad])."""
+        return -weight * (self.heading_error() / scale) ** 2
+
+
+# =============================================================================================
+# the environments' docstrings: shared pieces, written once
+# =============================================================================================
+SHIP_OBSERVATION_TABLE = """\
+| # | name | unit | bound |
+|---|---|---|---|
+| 0 | roll φ | rad | ±π |
+| 1 | pitch θ | rad | ±π/2 |
+| 2 | heave (from the calm-water equilibrium, down positive) | m | ±30 |
+| 3–5 | roll rate p, pitch rate q, heave velocity w (body) | rad/s, rad/s, m/s | 5, 5, 30 |
+| 6 | yaw rate r | rad/s | ±2 |
+| 7–8 | surge speed u, sway velocity v | m/s | ±30 |
+| 9 | heading error wrap(ψ_ref − ψ) | rad | ±π |
+| 10–11 | cos β, sin β of the mean relative wave heading β = χ − ψ | - | ±1 |
+| 12 | rudder angle (servo) | rad | ±π/2 |
+| 13 | shaft speed | rev/s | ±20 |"""
+"""Markdown rows of the common observation entries 0–13 of every S175 task (the names and
+bounds of ``_BASE_OBSERVATIONS``, the rudder angle and the shaft speed)."""
+
+SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
+    # name: (unit, meaning); an environment may give its own meaning for any of them
+    "froude_number": ("-", "reference speed U = Fn √(g L) (radiation, diffraction, propeller)"),
+    "speed_range_mps": ("m/s", "initial speed range (self-propulsion rpm); keep near U"),
+    "hs_range_m": ("m", "significant wave height range"),
+    "tp_range_s": ("s", "peak period range"),
+    "wave_heading_range_deg": ("deg", "relative wave heading β (0 following, 180 head seas)"),
+    "n_wave_components": ("-", "components of the irregular sea"),
+    "wave_spreading_s": ("-", "cos-2s spreading exponent (None: long-crested)"),
+    "wave_ramp_time_s": ("s", "start-up ramp of the waves (Matusiak 2003, eq. 12)"),
+    "gm_range_m": ("m", "GM range of the loading (per episode; None: nominal)"),
+    "kg_m": ("m", "KG of the nominal loading (None: 9.55 m)"),
+    "passenger_point_m": ("m", "body-frame passenger position (z down)"),
+    "physics_dt_s": ("s", "physics time step"),
+    "control_dt_s": ("s", "control step (integer multiple of physics_dt_s)"),
+    "integrator": ("-", '"holloway" (1 force evaluation/step) or "rk4" (4)'),
+    "hull_mesh": ("-", "S175 mesh (sections, panels below/above water, deck)"),
+    "capsize_angle_deg": ("deg", "capsize roll angle (None: vanishing angle of the loading)"),
+    "dangerous_roll_deg": ("deg", "roll angle of the Safe-RL cost"),
+    "heading_weight": ("-", "weight of the heading term"),
+    "heading_scale_deg": ("deg", "heading error scale"),
+    "roll_weight": ("-", "weight of the roll term"),
+    "roll_scale_deg": ("deg", "roll scale"),
+    "effort_weight": ("-", "weight of the actuator effort term"),
+    "capsize_penalty": ("-", "penalty paid at capsize"),
+    "comfort_time_constant_s": ("s", "time constant of the running acceleration RMS"),
+    "sensor_noise": ("-", "multiplier of the sensor accuracies (SENSOR_NOISE_STD)"),
+    "wave_preview_m": ("m", "distances ahead of O of the elevation preview"),
+}
+"""Unit and meaning of the keyword arguments shared by the ship environments (the rows of the
+``## Arguments`` tables; :func:`env_docstring` takes each default from the task's signature)."""
+
+
+def _format_default(value: Any) -> str:
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, float):
+        return f"{value:g}" if value != 0.0 else "0"
+    if isinstance(value, tuple):
+        return "(" + ", ".join(_format_default(v) for v in value) + ")"
+    return repr(value)
+
+
+def _task_parameters(task_class: type) -> list[inspect.Parameter]:
+    """The keyword arguments of ``task_class.__init__`` after ``num_envs``."""
+    params = list(inspect.signature(task_class.__init__).parameters.values())
+    return [p for p in params[1:] if p.name != "num_envs"]
+
+
+def arguments_table(task_class: type, rows: Mapping[str, tuple[str, str]]) -> str:
+    """The ``## Arguments`` markdown table of a task: every keyword argument of its
+    ``__init__`` in signature order, its default, and (unit, meaning) from ``rows`` or else
+    :data:`SHIP_ARGUMENTS`.
+
+    Raises
+    ------
+    ValueError
+        A keyword argument without a documented unit and meaning.
+    """
+    known = {**SHIP_ARGUMENTS, **rows}
+    lines = ["| kwarg | default | unit | meaning |", "|---|---|---|---|"]
+    for p in _task_parameters(task_class):
+        if p.name not in known:
+            raise ValueError(f"{task_class.__name__} keyword {p.name!r} has no documented unit")
+        unit, meaning = known[p.name]
+        lines.append(f"| {p.name} | {_format_default(p.default)} | {unit} | {meaning} |")
+    return "\n".join(lines)
+
+
+def _time_limit(name: str, task_class: type) -> str:
+    steps = max_episode_steps(name)
+    defaults = {p.name: p.default for p in _task_parameters(task_class)}
+    dt = defaults.get("control_dt_s", defaults.get("control_dt"))
+    return f"``MAX_EPISODE_STEPS`` = {steps} control steps = {steps * dt:g} s at the default step"
+
+
+def _fill(doc: str, marker: str, text: str) -> str:
+    """Replace ``{marker}`` in ``doc``, indenting the lines of ``text`` like the marker."""
+    found = re.search(rf"^([ \t]*)(.*?)\{{{marker}\}}", doc, re.MULTILINE)
+    if found is None:
+        raise ValueError(f"docstring has no {{{marker}}} marker")
+    indent = found.group(1)
+    return doc.replace(f"{{{marker}}}", text.replace("\n", "\n" + indent), 1)
+
+
+_EnvType = TypeVar("_EnvType", bound=type)
+
+
+def env_docstring(
+    arguments: Mapping[str, tuple[str, str]] | None = None,
+    version_history: Sequence[str] = ("v0: initial version.",),
+) -> Callable[[_EnvType], _EnvType]:
+    """Class decorator completing a ship environment's Gymnasium v5 docstring.
+
+    The class docstring holds the sections Description … Episode End; this fills the markers
+    ``{ship_observations}`` (:data:`SHIP_OBSERVATION_TABLE`) and ``{time_limit}`` (the
+    registered ``MAX_EPISODE_STEPS`` of ``<Name>Env`` and its duration at the default control
+    step) where it has them, and appends ``## Arguments`` (:func:`arguments_table` of the
+    class's ``task_class``, with the environment's own ``arguments`` rows, name → (unit,
+    meaning)) and ``## Version History``.
+    """
+
+    def decorate(cls: _EnvType) -> _EnvType:
+        task_class = cls.task_class  # type: ignore[attr-defined]
+        name = cls.__name__.removesuffix("Env")
+        doc = (cls.__doc__ or "").rstrip()
+        if "{ship_observations}" in doc:
+            doc = _fill(doc, "ship_observations", SHIP_OBSERVATION_TABLE)
+        if "{time_limit}" in doc:
+            doc = _fill(doc, "time_limit", _time_limit(name, task_class))
+        sections = [
+            "## Arguments",
+            arguments_table(task_class, arguments or {}),
+            "## Version History",
+            "\n".join(f"* {line}" for line in version_history),
+        ]
+        cls.__doc__ = doc + "".join(_indent(f"\n\n{part}") for part in sections) + "\n    "
+        return cls
+
+    return decorate
+
+
+def _indent(text: str, indent: str = "    ") -> str:
+    """Indent the lines of a docstring fragment like a class docstring's body."""
+    return "\n".join(indent + line if line else line for line in text.split("\n"))
+
+
+def vector_env_docstring(env_class: type) -> str:
+    """The docstring of the vector face of ``env_class`` (N episodes, seeds s + i)."""
+    return (
+        f"N episodes of :class:`{env_class.__name__}` in one BatchSimulator (same keyword "
+        "arguments).\n\n"
+        "    Episode i reset with ``seed=s`` is the single environment reset with "
+        "``seed=s + i``.\n    "
+    )

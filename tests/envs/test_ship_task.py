@@ -1,25 +1,39 @@
-"""ShipTask machinery: loading (G per ship), vanishing angle, wave field, preview, determinism.
+"""ShipTask machinery: loading (G per ship), vanishing angle, wave field, preview, determinism,
+and the checks every ship environment passes (parametrised over _ship_env_checks.SHIP_ENVS).
 
 Coarse S175 mesh (24 sections) throughout; references are independent computations (a hull
-built with the other KG, WaveField.elevation, a fresh interpreter).
+built with the other KG, WaveField.elevation, a fresh interpreter, the single environment).
 """
 
+import importlib
+import inspect
 import json
 import subprocess
 import sys
 
+import gymnasium
 import numpy as np
 import pytest
+from _ship_env_checks import (
+    COARSE,
+    RESET_INFO_KEYS,
+    SHIP_ENVS,
+    assert_bad_actions_raise,
+    assert_checkers_pass_without_warnings,
+    reward_terms,
+    rollout,
+    uniform_actions,
+)
 
 from ship_gym.dynamics.batch import build_batch_simulator
 from ship_gym.dynamics.ship import ShipSetup, wave_field_for
-from ship_gym.envs.course_keeping import CourseKeepingEnv
-from ship_gym.envs.ship_task import SeaSampler, loading_condition
+from ship_gym.envs.course_keeping import CourseKeepingEnv, CourseKeepingTask
+from ship_gym.envs.registration import ENTRIES
+from ship_gym.envs.ship_task import SeaSampler, arguments_table, loading_condition
 from ship_gym.hull import load_hull, righting_arm
 from ship_gym.waves.sea_state import IrregularSea
 
 MESH = {"n_sections": 24, "n_below": 6, "n_above": 3, "n_deck": 2}
-COARSE = {"hull_mesh": (24, 6, 3, 2), "n_wave_components": 20}
 
 
 def test_vanishing_angle_of_a_raised_g_matches_the_gz_curve_of_that_loading():
@@ -163,3 +177,105 @@ def test_seeded_rollout_identical_in_a_fresh_interpreter():
         obs, r, *_ = env.step(a)
     assert obs.tolist() == other_obs  # bit for bit
     assert r == other_reward
+
+
+# =============================================================================================
+# what every ship environment must do
+# =============================================================================================
+@pytest.mark.parametrize("case", list(SHIP_ENVS))
+def test_gymnasium_and_sb3_checkers_pass_without_warnings(case):
+    assert_checkers_pass_without_warnings(SHIP_ENVS[case].env)
+
+
+@pytest.mark.parametrize("case", list(SHIP_ENVS))
+def test_seeded_rollouts_repeat_and_the_reward_is_the_sum_of_its_terms(case):
+    env_case = SHIP_ENVS[case]
+    env = env_case.env()
+    actions = uniform_actions(env, 12, seed=0)
+    a = rollout(env, 5, actions)
+    b = rollout(env_case.env(), 5, actions)  # another instance, same seed: bit for bit
+    np.testing.assert_array_equal(a.observations, b.observations)
+    np.testing.assert_array_equal(a.rewards, b.rewards)
+    assert not a.ended  # no default sea capsizes the S175 within 6 s
+    assert RESET_INFO_KEYS <= a.reset_info.keys()
+    assert all(env.observation_space.contains(o) for o in a.observations)
+    assert len(env.observation_names) == env.observation_space.shape[0]
+    for reward, info in zip(a.rewards, a.infos, strict=True):
+        terms = reward_terms(info)
+        assert tuple(terms) == env_case.reward_terms
+        # summed in the same order as TaskStep.reward: equal to rounding of the float sum
+        assert reward == pytest.approx(sum(terms.values()), rel=1e-12, abs=1e-15)
+        assert 0.0 <= info["cost"] <= 1.0
+        assert not info["capsized"] and not info["diverged"]
+    # another seed, another sea (and set-point)
+    other = rollout(env, 6, actions[:2])
+    assert not np.array_equal(other.observations, a.observations[:3])
+
+
+@pytest.mark.parametrize("case", list(SHIP_ENVS))
+def test_vector_env_episode_i_is_the_single_env_seeded_s_plus_i(case):
+    env_case = SHIP_ENVS[case]
+    n, seed, steps = 2, 10, 5
+    vec = env_case.vector_env(n)
+    actions = uniform_actions(vec, steps, seed=1)
+    obs_v, info_v = vec.reset(seed=seed)
+    steps_v = [vec.step(a) for a in actions]
+    for i in range(n):
+        single = rollout(env_case.env(), seed + i, actions[:, i])
+        # same sea and the same first state, bit for bit
+        np.testing.assert_array_equal(obs_v[i], single.observations[0])
+        for key in RESET_INFO_KEYS:
+            assert info_v[key][i] == single.reset_info[key]
+        for k, (obs, reward, *_rest) in enumerate(steps_v):
+            # same code path; the batch's (N, 6) @ (6, 6) products may round in another order
+            # than N = 1: about one float32 ulp on the observations, 1e-9 on the rewards
+            np.testing.assert_allclose(obs[i], single.observations[k + 1], rtol=1e-6, atol=1e-7)
+            assert reward[i] == pytest.approx(single.rewards[k], rel=1e-9, abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    "case", ["CourseKeeping", "CapsizeAvoidance", "RollStabilization-rudder", "RideControl"]
+)
+def test_nan_inf_and_wrong_shape_actions_raise_value_error(case):
+    assert_bad_actions_raise(SHIP_ENVS[case].env())
+
+
+@pytest.mark.parametrize("entry", ENTRIES, ids=[e.name for e in ENTRIES])
+def test_module_time_limit_is_the_registered_one(entry):
+    module = importlib.import_module(f"ship_gym.envs.{entry.module}")
+    assert module.MAX_EPISODE_STEPS == gymnasium.spec(entry.id).max_episode_steps
+    assert "``MAX_EPISODE_STEPS``" in (getattr(module, f"{entry.name}Env").__doc__ or "")
+
+
+@pytest.mark.parametrize("env_class", sorted({c.env_class for c in SHIP_ENVS.values()}, key=str))
+def test_env_docstring_has_every_section_and_every_keyword_argument(env_class):
+    doc = env_class.__doc__
+    sections = [line.strip() for line in doc.splitlines() if line.strip().startswith("## ")]
+    assert sections == [
+        "## Description", "## Action Space", "## Observation Space", "## Rewards",
+        "## Starting State", "## Episode End", "## Arguments", "## Version History",
+    ]  # fmt: skip
+    assert "{" not in doc  # every marker filled
+    assert "| 13 | shaft speed | rev/s | ±20 |" in doc  # the common observation rows
+    for name in inspect.signature(env_class.task_class.__init__).parameters:
+        if name not in ("self", "num_envs"):
+            assert f"    | {name} | " in doc
+
+
+def test_arguments_table_takes_the_defaults_from_the_signature():
+    own = {
+        "initial_heading_error_deg": ("deg", "set-point range"),
+        "rudder_mode": ("-", "mode"),
+        "max_rudder_increment_deg": ("deg", "increment"),
+    }
+    with pytest.raises(ValueError, match="rudder_weight"):
+        arguments_table(CourseKeepingTask, own)  # an undocumented keyword argument
+    table = arguments_table(CourseKeepingTask, {**own, "rudder_weight": ("-", "weight")})
+    assert table.splitlines()[2] == (
+        "| froude_number | 0.25 | - | reference speed U = Fn √(g L) (radiation, diffraction, "
+        "propeller) |"
+    )
+    assert "| hs_range_m | (3, 5) | m | significant wave height range |" in table
+    assert '| rudder_mode | "absolute" | - | mode |' in table
+    assert "| hull_mesh | (60, 12, 6, 4) | - |" in table
+    assert "| speed_range_mps | None | m/s |" in table
