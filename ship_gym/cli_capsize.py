@@ -100,6 +100,12 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     d.add_argument("--duration", type=float, default=600.0, help="simulated time per seed [s]")
     d.add_argument("--dt", type=float, default=0.1, help="physics time step [s]")
     d.add_argument("--n-jobs", type=int, default=1, help="parallel worker processes")
+    d.add_argument(
+        "--hold-yaw",
+        action="store_true",
+        help="keep the ship beam-on (IMO dead-ship assumption); by default yaw is free and the "
+        "unpowered ship turns away from beam seas",
+    )
     d.add_argument("--json", default=None, help="write the numbers to this JSON file")
     d.set_defaults(func=cmd_dead_ship)
 
@@ -196,6 +202,7 @@ def cmd_dead_ship(args: argparse.Namespace) -> int:
         duration=args.duration,
         dt=args.dt,
         n_jobs=args.n_jobs,
+        hold_yaw=args.hold_yaw,
     )
     print(ist.format_dead_ship(res))
     if args.json:

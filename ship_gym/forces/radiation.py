@@ -111,10 +111,20 @@ _CACHE_SIZE = 16
 
 
 def _cached(key: tuple, build: Any) -> Any:
+    """Kernels / state-space fits, built once per process.
+
+    Built with one BLAS thread: a multithreaded SVD or least-squares solve rounds differently,
+    and a fit that depended on the thread count of the process that first built it would make
+    otherwise identical runs (a serial and a joblib-parallel capsize map, a subprocess) differ
+    in the last bits, which a long nonlinear run amplifies.
+    """
     if key not in _CACHE:
+        from threadpoolctl import threadpool_limits
+
         if len(_CACHE) >= _CACHE_SIZE:
             _CACHE.pop(next(iter(_CACHE)))
-        _CACHE[key] = build()
+        with threadpool_limits(limits=1, user_api="blas"):
+            _CACHE[key] = build()
     return _CACHE[key]
 
 
