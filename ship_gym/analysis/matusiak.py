@@ -366,7 +366,7 @@ def run_scenario(scenario: Scenario, *, record_every: int = 5, progress: bool = 
             )
         )
     )
-    w_roll = roll_natural_frequency(hull, load_database("s175"))
+    w_roll = roll_natural_frequency(hull, load_database(scenario.setup().database))
     outcome, series = simulate_until_capsize(
         sim,
         scenario.duration,
