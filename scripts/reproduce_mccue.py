@@ -20,9 +20,21 @@ Part 2 (``--part sixdof``): the extension the paper's conclusion points to. The 
 sway/yaw held) in long-crested beam seas (JONSWAP Hs 4 m, Tp 10 s, 100 components, seed 1);
 the roll, roll rate and incident-wave elevation at the ship's origin are recorded every 0.1 s for
 1000 s after a 100 s start (the wave ramp is 50 s). Eq. 2 with the harmonic term replaced by
-K η(t − τ) (gain and lag fitted) is identified on the first 600 s and run freely over the
-remaining 400 s; the identified ωₙ = √c_u1 is compared with the linear natural frequency of the
-hydro database (``ship_gym.hydro.rao.natural_frequency``: ω²(I44 + A44(ω)) = C44).
+K u(t − τ) (gain and lag fitted) is identified on the first 600 s and run freely over the
+remaining 400 s, for three inputs u:
+
+* ``excitation`` (the main one): the linear roll excitation moment m(t) [N·m] (Froude–Krylov +
+  diffraction X₄(ω, β) of the hydro database) synthesised component by component from the
+  simulator's wave field (:func:`ship_gym.analysis.identification.roll_excitation_moment`);
+  the physical gain is K = 1/(I44 + A44(ωₙ)) (I44 of the hull about O, A44 at the linear roll
+  natural frequency);
+* ``excitation_fft``: the same moment from the elevation record alone, FFT-filtered by X₄
+  (:func:`~ship_gym.analysis.identification.roll_excitation_from_elevation`: long-crested,
+  known heading, zero speed, record taken as periodic);
+* ``elevation``: the elevation η itself (the first attempt, kept as the comparison row).
+
+The identified ωₙ = √c_u1 is compared with the linear natural frequency of the hydro database
+(``ship_gym.hydro.rao.natural_frequency``: ω²(I44 + A44(ω)) = C44).
 
 Usage::
 
@@ -393,8 +405,18 @@ def part1(args: argparse.Namespace, out_dir: Path) -> dict:
 
 
 # ---------------------------------------------------------------------------------- part 2
-def simulate_s175(progress: bool) -> tuple[ident.RollRecord, dict]:
-    """Beam-sea roll record of the 6-DOF S175 with the wave elevation at the origin."""
+SIX_INPUTS = {
+    "excitation": "roll excitation moment m(t), component-wise from the wave field [N·m]",
+    "excitation_fft": "roll excitation moment from the elevation record, FFT-filtered by X₄ [N·m]",
+    "elevation": "incident-wave elevation η(t) at the ship's origin [m]",
+}
+SIX_EDGE = 50.0  # [s] ends of the record left out when comparing the FFT path with the exact one
+
+
+def simulate_s175(progress: bool) -> tuple[ident.RollRecord, dict, object, np.ndarray]:
+    """Beam-sea roll record of the 6-DOF S175 with the wave elevation at the origin; also the
+    simulator's wave field and the record's times on the wave field's clock [s] (the meta data
+    hold the ship's fixed horizontal position [m] and heading [rad])."""
     from ship_gym.dynamics.ship import ShipSetup, build_simulator
     from ship_gym.waves.sea_state import IrregularSea
 
@@ -412,23 +434,26 @@ def simulate_s175(progress: bool) -> tuple[ident.RollRecord, dict]:
     phidot = p + (q * np.sin(phi) + r * np.cos(phi)) * np.tan(theta)  # Euler-angle rate
     t = res.t - res.t[0]
     record = ident.RollRecord(t, phi, phidot, res.elevation, "wave_elevation")
-    return record, {"simulation_cpu_s": cpu, "setup": repr(setup)}
+    # surge/sway/yaw velocities are held at 0, yet the earth position creeps (≈ 1.4 m over the
+    # record, body-to-earth kinematics with roll and pitch): the mean position is used for m(t)
+    # (phase error k·0.7 m ≤ 0.03 rad at the roll-resonant ω ≤ 0.6 rad/s)
+    held = res.eta[:, [0, 1, 5]]
+    drift = float(np.max(np.ptp(held[:, :2], axis=0)))
+    if drift > 5.0 or np.ptp(held[:, 2]) > 1e-6:
+        raise RuntimeError(f"surge, sway and yaw were expected to be held (drift {drift:.3g} m)")
+    meta = {
+        "simulation_cpu_s": cpu,
+        "setup": repr(setup),
+        "position": (float(held[:, 0].mean()), float(held[:, 1].mean())),
+        "position_drift_m": drift,
+        "ship_heading": float(held[0, 2]),
+    }
+    return record, meta, sim.wave_field, res.t
 
 
-def part2(args: argparse.Namespace, out_dir: Path) -> dict:
-    from ship_gym.hydro import load_database
-    from ship_gym.hydro.rao import natural_frequency
-
-    cpu0 = time.process_time()
-    record, meta = simulate_s175(progress=not args.no_progress)
-    ident.write_roll_csv(out_dir / "s175_beam_roll.csv", record)
-    omega_lin = natural_frequency(load_database("s175"), "Roll")
-    print(
-        f"S175 beam seas Hs {SIX_HS} m Tp {SIX_TP} s: roll std "
-        f"{math.degrees(record.roll.std()):.2f}°, max "
-        f"{math.degrees(np.abs(record.roll).max()):.2f}°, elevation std "
-        f"{record.excitation.std():.2f} m [{meta['simulation_cpu_s']:.0f} s CPU]"
-    )
+def _fit_input(record: ident.RollRecord, name: str) -> dict:
+    """Fits of eq. 2 with K u(t − τ) for each N of SIX_PIECES; the N with the best free-run
+    reproduction of the training window is selected."""
     scans = []
     for n in SIX_PIECES:
         res = ident.identify_roll_equation(
@@ -439,22 +464,99 @@ def part2(args: argparse.Namespace, out_dir: Path) -> dict:
         pred_end = ident.predict_roll(res.model, record, train_end=SIX_TRAIN, start_time=SIX_TRAIN)
         m = res.model
         print(
-            f"  N = {n:4d}: b_u1 {m.b_u1:+.4f} b_u3 {m.b_u3:+.3f} c_u1 {m.c_u1:.4f} "
-            f"(ω_n {m.natural_frequency:.3f}) c_u3 {m.c_u3:+.3f} K {m.input_gain:+.4f} τ "
+            f"  [{name}] N = {n:4d}: b_u1 {m.b_u1:+.4f} b_u3 {m.b_u3:+.3f} c_u1 {m.c_u1:.4f} "
+            f"(ω_n {m.natural_frequency:.4f}) c_u3 {m.c_u3:+.3f} K {m.input_gain:+.4g} τ "
             f"{m.input_lag:+.2f} s | free run NRMSE fit {pred.fit_window.nrmse_roll:.3f}, "
             f"held-out {pred.prediction_window.nrmse_roll:.3f} (corr "
             f"{pred.prediction_window.correlation_roll:.3f}) [{res.cpu_time:.0f} s CPU]",
             flush=True,
         )
         scans.append({"result": res, "prediction": pred, "prediction_from_train_end": pred_end})
-    ok = [s for s in scans if not s["prediction"].diverged]
+    ok = [s for s in scans if not s["prediction"].diverged] or scans
     best = min(ok, key=lambda s: s["prediction"].fit_window.nrmse_roll)
-    m = best["result"].model
+    return {"record": record, "scans": scans, "best": best}
+
+
+def part2(args: argparse.Namespace, out_dir: Path) -> dict:
+    from ship_gym.hull import load_hull
+    from ship_gym.hydro import as_arrays, load_database
+    from ship_gym.hydro.rao import natural_frequency
+
+    cpu0 = time.process_time()
+    record, meta, field, t_wave = simulate_s175(progress=not args.no_progress)
+    ident.write_roll_csv(out_dir / "s175_beam_roll.csv", record)
+    db = load_database("s175")
+    omega_lin = natural_frequency(db, "Roll")
+    arrays = as_arrays(db)
+    i44 = float(load_hull("s175").mass.rigid_body_matrix()[3, 3])
+    a44 = float(np.interp(omega_lin, arrays.omega, arrays.added_mass[:, 3, 3]))
+    gain_phys = 1.0 / (i44 + a44)
     print(
-        f"selected N = {best['result'].n_pieces}: identified ω_n = √c_u1 = "
-        f"{m.natural_frequency:.4f} rad/s vs linear (database) {omega_lin:.4f} rad/s"
+        f"S175 beam seas Hs {SIX_HS} m Tp {SIX_TP} s: roll std "
+        f"{math.degrees(record.roll.std()):.2f}°, max "
+        f"{math.degrees(np.abs(record.roll).max()):.2f}°, elevation std "
+        f"{record.excitation.std():.2f} m [{meta['simulation_cpu_s']:.0f} s CPU]"
     )
-    _plot_part2(record, best, omega_lin, out_dir)
+    # the inputs: exact (component-wise) and FFT-filtered roll excitation, and the elevation
+    m_exact = ident.roll_excitation_moment(
+        field, db, t_wave, ship_heading=meta["ship_heading"], position=meta["position"]
+    )
+    m_fft = ident.roll_excitation_from_elevation(record.excitation, record.dt, db, math.pi / 2)
+    inner = (record.t >= SIX_EDGE) & (record.t <= record.t[-1] - SIX_EDGE)
+    fft_check = {
+        "nrmse_whole_record": float(np.std(m_fft - m_exact) / np.std(m_exact)),
+        "nrmse_interior": float(np.std((m_fft - m_exact)[inner]) / np.std(m_exact[inner])),
+        "interior": [SIX_EDGE, float(record.t[-1] - SIX_EDGE)],
+        "correlation_whole_record": float(np.corrcoef(m_fft, m_exact)[0, 1]),
+    }
+    print(
+        f"roll excitation: std {m_exact.std() / 1e6:.2f} MN·m; FFT path vs component-wise: "
+        f"NRMSE {fft_check['nrmse_whole_record']:.4f} (whole record), "
+        f"{fft_check['nrmse_interior']:.4f} ({SIX_EDGE:.0f} s ends left out); physical gain "
+        f"1/(I44 + A44(ω_n)) = {gain_phys:.4g} rad/s² per N·m (I44 {i44:.4g}, A44 {a44:.4g} "
+        "kg·m²)"
+    )
+    records = {
+        "excitation": ident.RollRecord(
+            record.t, record.roll, record.roll_rate, m_exact, "roll_excitation_moment"
+        ),
+        "excitation_fft": ident.RollRecord(
+            record.t, record.roll, record.roll_rate, m_fft, "roll_excitation_moment_fft"
+        ),
+        "elevation": record,
+    }
+    fits = {name: _fit_input(rec, name) for name, rec in records.items()}
+    rows = []
+    for name, fit in fits.items():
+        m = fit["best"]["result"].model
+        pw = fit["best"]["prediction"].prediction_window
+        pe = fit["best"]["prediction_from_train_end"].prediction_window
+        rows.append(
+            {
+                "input": name,
+                "n_pieces": fit["best"]["result"].n_pieces,
+                "omega_n": m.natural_frequency,
+                "gain": m.input_gain,
+                "gain_over_physical": m.input_gain / gain_phys if name != "elevation" else None,
+                "lag_s": m.input_lag,
+                "nrmse_heldout": pw.nrmse_roll,
+                "corr_heldout": pw.correlation_roll,
+                "nrmse_heldout_from_600": pe.nrmse_roll,
+                "corr_heldout_from_600": pe.correlation_roll,
+                "std_roll_model_deg": math.degrees(pw.std_roll_model),
+            }
+        )
+    print(f"\nlinear ω_n (database) {omega_lin:.4f} rad/s; held-out window 600–1000 s")
+    for r in rows:
+        ratio = "" if r["gain_over_physical"] is None else f" ({r['gain_over_physical']:.3f} phys)"
+        print(
+            f"{r['input']:15s} N {r['n_pieces']:4d}: √c_u1 {r['omega_n']:.4f}, K "
+            f"{r['gain']:+.4g}{ratio}, τ {r['lag_s']:+.2f} s | free run from 0: NRMSE "
+            f"{r['nrmse_heldout']:.3f}, corr {r['corr_heldout']:.3f}; from 600 s: NRMSE "
+            f"{r['nrmse_heldout_from_600']:.3f}, corr {r['corr_heldout_from_600']:.3f}"
+        )
+    _plot_part2(fits, m_exact, m_fft, omega_lin, out_dir)
+    main_fit = fits["excitation"]["best"]
     return {
         "conditions": {
             "hull": "s175",
@@ -468,59 +570,92 @@ def part2(args: argparse.Namespace, out_dir: Path) -> dict:
             "settle": SIX_SETTLE,
             "duration": SIX_DURATION,
             "train_end": SIX_TRAIN,
-            "forcing_model": "K * elevation(t - lag) at the ship's origin, K and lag fitted",
+            "forcing_model": "K * u(t - lag), K and lag fitted, for each input u",
+            "inputs": SIX_INPUTS,
             "selection": "N with the smallest free-run roll NRMSE over the training window",
         },
         "roll_std_deg": math.degrees(float(record.roll.std())),
         "roll_max_deg": math.degrees(float(np.abs(record.roll).max())),
+        "roll_excitation_std_Nm": float(m_exact.std()),
+        "fft_vs_componentwise_excitation": fft_check,
         "omega_natural_linear": omega_lin,
-        "scan": [
-            {
-                "identification": s["result"].as_dict(),
-                "prediction_from_start": s["prediction"].as_dict(),
-                "prediction_from_train_end": s["prediction_from_train_end"].as_dict(),
+        "physical_gain": {"I44": i44, "A44_at_omega_n": a44, "gain": gain_phys},
+        "table": rows,
+        "inputs": {
+            name: {
+                "scan": [
+                    {
+                        "identification": s["result"].as_dict(),
+                        "prediction_from_start": s["prediction"].as_dict(),
+                        "prediction_from_train_end": s["prediction_from_train_end"].as_dict(),
+                    }
+                    for s in fit["scans"]
+                ],
+                "selected_n_pieces": fit["best"]["result"].n_pieces,
             }
-            for s in scans
-        ],
-        "selected_n_pieces": best["result"].n_pieces,
-        "omega_natural_identified": m.natural_frequency,
+            for name, fit in fits.items()
+        },
+        "selected_n_pieces": main_fit["result"].n_pieces,
+        "omega_natural_identified": main_fit["result"].model.natural_frequency,
         "meta": meta,
         "cpu_time_s": time.process_time() - cpu0,
     }
 
 
-def _plot_part2(record: ident.RollRecord, best: dict, omega_lin: float, out_dir: Path) -> None:
+def _plot_part2(
+    fits: dict, m_exact: np.ndarray, m_fft: np.ndarray, omega_lin: float, out_dir: Path
+) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    res, pred = best["result"], best["prediction"]
-    pe = best["prediction_from_train_end"]
-    fig = plt.figure(figsize=(12, 7.5))
-    grid = fig.add_gridspec(3, 2)
+    main, old = fits["excitation"], fits["elevation"]
+    record = main["record"]
+    res, pred = main["best"]["result"], main["best"]["prediction"]
+    fig = plt.figure(figsize=(12, 10))
+    grid = fig.add_gridspec(4, 2)
     ax = fig.add_subplot(grid[0, :])
     ident.plot_time_history(
         ax, record, pred,
-        title=f"S175 beam seas Hs {SIX_HS} m Tp {SIX_TP} s: eq. 2 with K η(t − τ), N = "
-        f"{res.n_pieces}, free run from t = 0 (held-out NRMSE "
-        f"{pred.prediction_window.nrmse_roll:.2f}, "
-        f"corr {pred.prediction_window.correlation_roll:.2f})",
+        title=f"S175 beam seas Hs {SIX_HS} m Tp {SIX_TP} s: eq. 2 with K m(t − τ) (roll "
+        f"excitation moment), N = {res.n_pieces}, free run from t = 0 (held-out NRMSE "
+        f"{pred.prediction_window.nrmse_roll:.2f}, corr "
+        f"{pred.prediction_window.correlation_roll:.2f})",
     )  # fmt: skip
-    ax.plot(pe.t, np.degrees(pe.roll), color="C2", lw=0.8, ls=":", label="free run from 600 s")
-    ax.legend(loc="upper right", fontsize=7, ncol=4)
     ax2 = fig.add_subplot(grid[1, :])
     s = record.t >= SIX_TRAIN
     ax2.plot(record.t[s], np.degrees(record.roll[s]), color="0.2", lw=1.0, label="6-DOF")
-    ax2.plot(pred.t[pred.t >= SIX_TRAIN], np.degrees(pred.roll[pred.t >= SIX_TRAIN]), "C3--",
-             lw=1.0, label="identified (from t = 0)")  # fmt: skip
-    ax2.plot(pe.t, np.degrees(pe.roll), color="C2", lw=0.8, ls=":", label="identified (from 600 s)")
+    curves = (
+        (main, "C3", "input m(t)"),
+        (fits["excitation_fft"], "C1", "input m(t) via FFT of η"),
+        (old, "C0", "input η(t)"),
+    )
+    for fit, color, label in curves:
+        p = fit["best"]["prediction"]
+        k = p.t >= SIX_TRAIN
+        w = p.prediction_window
+        label = f"{label}: NRMSE {w.nrmse_roll:.2f}, corr {w.correlation_roll:.2f}"
+        ax2.plot(p.t[k], np.degrees(p.roll[k]), color=color, lw=0.9, ls="--", label=label)
     ax2.set_xlim(SIX_TRAIN, SIX_TRAIN + 200)
     ax2.set_xlabel("t [s]")
     ax2.set_ylabel("roll [deg]")
-    ax2.legend(fontsize=7)
+    ax2.set_title("held-out window (free runs from t = 0)", fontsize=9)
+    ax2.legend(fontsize=7, loc="upper right")
     ax2.grid(alpha=0.3)
-    axes = [fig.add_subplot(grid[2, 0]), fig.add_subplot(grid[2, 1])]
+    for col, (t0, t1, title) in enumerate(
+        ((0.0, 150.0, "record start (FFT wrap-around)"), (500.0, 650.0, "interior"))
+    ):
+        ax3 = fig.add_subplot(grid[2, col])
+        k = (record.t >= t0) & (record.t <= t1)
+        ax3.plot(record.t[k], m_exact[k] / 1e6, color="0.2", lw=1.0, label="component-wise")
+        ax3.plot(record.t[k], m_fft[k] / 1e6, color="C1", lw=0.9, ls="--", label="FFT of η × X₄")
+        ax3.set_xlabel("t [s]")
+        ax3.set_ylabel("roll excitation [MN·m]")
+        ax3.set_title(title, fontsize=9)
+        ax3.legend(fontsize=7)
+        ax3.grid(alpha=0.3)
+    axes = [fig.add_subplot(grid[3, 0]), fig.add_subplot(grid[3, 1])]
     ident.plot_curves(axes, res.model, record, train_end=SIX_TRAIN)
     phi = np.linspace(-1, 1, 201) * 2 * np.max(np.abs(record.roll))
     axes[0].plot(phi, omega_lin**2 * phi, color="C0", lw=0.9, ls=":", label="ω_n,lin² φ")

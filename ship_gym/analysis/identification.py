@@ -28,7 +28,11 @@ What this module adds, and the readings it takes:
   K times a record column u (e.g. the incident-wave elevation at the ship [m]), shifted by a lag
   τ [s] (fitted when ``fit_input_lag=True``; τ < 0 is a lead). This is the simplest linear filter
   of the elevation: one gain and one delay, i.e. the right amplitude and phase of the roll moment
-  at one frequency only.
+  at one frequency only. In irregular waves the physically meaningful input is the linear wave
+  roll moment m(t) (Froude–Krylov + diffraction X₄(ω, β) of a BEM database), giving
+  K ≈ 1/(I44 + A44): :func:`roll_excitation_moment` synthesises it from a known sea component
+  by component, :func:`roll_excitation_from_elevation` filters a measured elevation record by
+  X₄ (FFT; long-crested, known heading), :func:`roll_excitation_transfer` gives X₄.
 * **Norm.** ‖·‖ is the Euclidean norm of (Δy, w·Δẏ) in the record's units (rad, rad/s), w = 1 by
   default as in the paper; ``compare="all"`` also counts the samples inside each piece (the paper
   compares the piece end points only, ``"endpoint"``).
@@ -83,6 +87,9 @@ __all__ = [
     "plot_curves",
     "plot_time_history",
     "predict_roll",
+    "roll_excitation_from_elevation",
+    "roll_excitation_moment",
+    "roll_excitation_transfer",
     "write_roll_csv",
 ]
 
@@ -263,6 +270,243 @@ def write_roll_csv(path: str | Path, record: RollRecord) -> Path:
     rows = np.column_stack(cols)
     body = "\n".join(",".join(f"{v:.12g}" for v in row) for row in rows)
     return atomic_write_text(path, ",".join(names) + "\n" + body + "\n")
+
+
+# ------------------------------------------------------------------ roll excitation input
+# The physically meaningful input for K u(t − τ) in irregular waves: the linear wave roll moment
+# (Froude–Krylov + diffraction) m(t) = Re Σ_j X₄(ω_j, β_j) a_j e^{−iθ_j(t)}, X₄ from the BEM
+# database (per unit amplitude, capytaine's time convention x(t) = Re(X e^{−iωt}), crest at O at
+# t = 0; ship_gym.hydro.database). With eq. 2 divided by the roll inertia, K ≈ 1/(I44 + A44(ωₙ)).
+def roll_excitation_transfer(
+    database: object, omega: npt.ArrayLike, heading: npt.ArrayLike, *, dof: str = "Roll"
+) -> NDArray[np.complex128]:
+    """Linear wave excitation X(ω, β) per unit amplitude of one DOF from a BEM database.
+
+    X = Froude–Krylov + diffraction (the database's ``excitation_force``), body frame about O
+    (:mod:`ship_gym.conventions`), capytaine's time convention: a wave ζ(O, t) = Re(a e^{−iωt})
+    gives the moment Re(X a e^{−iωt}).
+
+    Interpolation: linear in the real and imaginary parts, in ω and in β (headings completed to
+    the full circle by :func:`ship_gym.hydro.database.mirror_headings` when needed, periodic in
+    2π). Outside the database's finite frequencies (ω_min, ω_max): X(ω_min, β)(ω/ω_min)² below
+    (wave-slope law of long waves, as :class:`ship_gym.forces.diffraction.Diffraction`), 0 above
+    (short waves; the S175 database stops at 1.67 rad/s). A negative ω (an encounter frequency of
+    a ship overtaking the waves) gives conj X(|ω|), the transfer function of a real system.
+
+    Parameters
+    ----------
+    database : xarray.Dataset
+        Hydrodynamic database with ``excitation_force`` (:func:`ship_gym.hydro.load_database`).
+    omega : array_like
+        Wave frequencies ω [rad/s].
+    heading : array_like
+        Relative wave headings β [rad] (π/2: waves travelling toward starboard); broadcasts with
+        ``omega``.
+    dof : str
+        DOF label (``"Roll"``: X₄ [N·m/m]).
+
+    Returns
+    -------
+    ndarray of complex
+        X [N/m or N·m/m], shape ``broadcast(omega, heading)``.
+    """
+    from ship_gym.conventions import dof_index
+    from ship_gym.hydro import as_arrays, mirror_headings
+
+    w, b = np.broadcast_arrays(np.asarray(omega, dtype=float), np.asarray(heading, dtype=float))
+    if not (np.all(np.isfinite(w)) and np.all(np.isfinite(b))):
+        raise ValueError("omega [rad/s] and heading [rad] must be finite")
+    i_dof = dof_index(dof)
+    arrays = as_arrays(database)  # type: ignore[arg-type]
+    beta = np.mod(b, 2.0 * math.pi)
+    grid = np.mod(arrays.wave_direction, 2.0 * math.pi)
+    if np.any(beta < grid.min() - 1e-9) or np.any(beta > grid.max() + 1e-9):
+        arrays = as_arrays(mirror_headings(database))  # type: ignore[arg-type]
+        grid = np.mod(arrays.wave_direction, 2.0 * math.pi)
+    order = np.argsort(grid)
+    grid, exc = grid[order], arrays.excitation_force[:, order, i_dof]  # (n_ω, n_β)
+    if not np.all(np.isfinite(exc)):
+        raise ValueError("the database's excitation_force holds NaN/inf at finite frequencies")
+    # periodic heading axis: append the first heading one turn on
+    grid = np.append(grid, grid[0] + 2.0 * math.pi)
+    exc = np.concatenate([exc, exc[:, :1]], axis=1)
+    beta = np.where(beta < grid[0], beta + 2.0 * math.pi, beta)
+    j = np.clip(np.searchsorted(grid, beta, side="right"), 1, grid.size - 1)
+    frac = np.clip((beta - grid[j - 1]) / (grid[j] - grid[j - 1]), 0.0, 1.0)
+    w_grid = arrays.omega
+    a = np.abs(w)
+    a_in = np.clip(a, w_grid[0], w_grid[-1])
+    k = np.clip(np.searchsorted(w_grid, a_in, side="right"), 1, w_grid.size - 1)
+    s = (a_in - w_grid[k - 1]) / (w_grid[k] - w_grid[k - 1])
+    out = np.zeros(w.shape, dtype=np.complex128)
+    for dk, wk in ((k - 1, 1.0 - s), (k, s)):
+        out += wk * ((1.0 - frac) * exc[dk, j - 1] + frac * exc[dk, j])
+    out = np.where(a < w_grid[0], out * (a / w_grid[0]) ** 2, out)
+    out = np.where(a > w_grid[-1] * (1.0 + 1e-12), 0.0, out)
+    return np.where(w < 0.0, np.conj(out), out)
+
+
+def _wave_frequency_from_encounter(
+    omega_e: FloatArray, speed: float, heading: float, g: float
+) -> FloatArray:
+    """Invert ω_e = ω − ω² U cos β / g for ω ≥ 0 (unique when U cos β ≤ 0)."""
+    c = speed * math.cos(heading) / g
+    if abs(c) < 1e-15:
+        return np.abs(omega_e)
+    if c > 0.0:
+        raise ValueError(
+            f"the encounter-to-wave frequency mapping is not unique in following or quartering "
+            f"seas with speed (U cos β = {speed * math.cos(heading):.4g} m/s > 0); use the "
+            "component-wise roll_excitation_moment or a zero-speed record"
+        )
+    # c ω² − ω + ω_e = 0, the root that → ω_e as c → 0
+    a = np.abs(omega_e)
+    return 2.0 * a / (1.0 + np.sqrt(1.0 - 4.0 * c * a))
+
+
+def roll_excitation_moment(
+    wave_field: object,
+    database: object,
+    t: npt.ArrayLike,
+    *,
+    ship_heading: float = 0.0,
+    position: tuple[float, float] = (0.0, 0.0),
+    forward_speed: float = 0.0,
+    dof: str = "Roll",
+) -> FloatArray:
+    """Linear wave roll moment at the ship, synthesised component by component (exact input).
+
+    For a known incident sea (a :class:`ship_gym.waves.wave_field.WaveField`, e.g. the
+    Simulator's ``wave_field``), with the ship's origin O at (X₀, Y₀) + U t (cos ψ, sin ψ) in
+    earth axes:
+
+        m(t) = r(t) Re Σ_j X₄(ω_j, β_j) a_j e^{−iθ_j(t)},
+        θ_j(t) = ω_e,j t + ε_j − k_j (X₀ cos χ_j + Y₀ sin χ_j),   β_j = χ_j − ψ,
+
+    ω_e,j = ω_j − k_j U cos β_j the encounter frequency (:func:`ship_gym.kinematics.
+    encounter_frequency`), r(t) the start-up ramp. Each term is the moment of the component
+    whose elevation at O is Re(a_j e^{−iθ_j}) = a_j cos θ_j (the field's ζ), so the phases
+    match the simulator's (:mod:`ship_gym.forces.diffraction`, phase mapping). X₄ is looked up
+    at the wave frequency ω_j (the zero-speed transfer function of the component's spatial
+    pattern, as :func:`ship_gym.hydro.rao.response_amplitude_operator` does), see
+    :func:`roll_excitation_transfer` for the interpolation. Linear theory: the moment on the
+    mean hull, not the simulator's moment on the instantaneous hull.
+
+    Parameters
+    ----------
+    wave_field : WaveField
+        Incident sea (amplitudes a_j [m], frequencies ω_j [rad/s], wavenumbers k_j [rad/m],
+        directions χ_j [rad], phases ε_j [rad], ramp).
+    database : xarray.Dataset
+        Hydrodynamic database of the hull (:func:`ship_gym.hydro.load_database`).
+    t : array_like
+        Times [s] on the wave field's clock (the Simulator's ``SimulationResult.t``).
+    ship_heading : float
+        ψ [rad].
+    position : tuple of float
+        (X₀, Y₀) of O at t = 0 [m].
+    forward_speed : float
+        U [m/s].
+    dof : str
+        DOF of the moment (``"Roll"`` [N·m]).
+
+    Returns
+    -------
+    ndarray, shape (n_t,)
+        m(t) [N·m] (or [N] for a translational DOF).
+    """
+    from ship_gym.kinematics import encounter_frequency
+
+    tt = np.atleast_1d(np.asarray(t, dtype=float))
+    if tt.ndim != 1 or not np.all(np.isfinite(tt)):
+        raise ValueError(f"t must be a finite 1-D array of times [s]; got shape {tt.shape}")
+    for name, v in (("ship_heading", ship_heading), ("forward_speed", forward_speed)):
+        if not math.isfinite(v):
+            raise ValueError(f"{name} must be finite, got {v!r}")
+    wf = wave_field
+    beta = np.asarray(wf.direction) - ship_heading  # type: ignore[attr-defined]
+    omega = np.asarray(wf.omega)  # type: ignore[attr-defined]
+    w_e = encounter_frequency(omega, forward_speed, beta, wf.g)  # type: ignore[attr-defined]
+    x = roll_excitation_transfer(database, omega, beta, dof=dof)
+    x0, y0 = position
+    eps = wf.phase - (wf.kx * x0 + wf.ky * y0)  # type: ignore[attr-defined]
+    coef = x * np.asarray(wf.amplitude) * np.exp(-1j * eps)  # type: ignore[attr-defined]
+    out = np.empty(tt.size)
+    step = max(1, (1 << 20) // max(coef.size, 1))
+    for i in range(0, tt.size, step):
+        s = slice(i, i + step)
+        out[s] = (np.exp(-1j * np.multiply.outer(tt[s], w_e)) @ coef).real
+    return out * wf.ramp(tt)  # type: ignore[attr-defined]
+
+
+def roll_excitation_from_elevation(
+    elevation: npt.ArrayLike,
+    dt: float,
+    database: object,
+    heading: float,
+    *,
+    forward_speed: float = 0.0,
+    g: float | None = None,
+    dof: str = "Roll",
+) -> FloatArray:
+    """Linear wave roll moment from a measured elevation record, by FFT filtering with X₄.
+
+    What a user with only an elevation record at the ship can do:
+
+        m = IFFT[ conj X₄(ω(f_k), β) · FFT[ζ](f_k) ],
+
+    numpy's FFT having the e^{+iωt} kernel while X₄ is defined in the e^{−iωt} convention (hence
+    the conjugate on the positive-frequency bins). Assumptions, to state with any result:
+
+    * the elevation is the **incident** wave at the ship's origin O (not disturbed by the hull);
+    * **long-crested** sea from one **known relative heading** β (a short-crested sea would need
+      the directional spreading: one record cannot tell the directions apart);
+    * **linear** superposition, and the record **periodic** (the FFT wraps around): the first and
+      last ~ the impulse-response length of X₄ (tens of seconds for a ship's roll) carry
+      wrap-around errors, unless the sea is periodic in the record (components on the FFT bins,
+      where the filter is exact);
+    * **zero speed**, or encounter mapping: a record measured on the moving ship oscillates at
+      ω_e; ω is recovered from ω_e = ω − ω²U cos β/g, unique only for U cos β ≤ 0 (head to beam
+      seas); following seas with speed raise ValueError.
+
+    Parameters
+    ----------
+    elevation : array_like, shape (n,)
+        ζ(O, t) [m], uniformly sampled.
+    dt : float
+        Sample interval [s].
+    database : xarray.Dataset
+        Hydrodynamic database (:func:`ship_gym.hydro.load_database`).
+    heading : float
+        Relative wave heading β [rad].
+    forward_speed : float
+        U [m/s].
+    g : float or None
+        Gravity [m/s²] (None: the database's ``attrs["g"]``, else standard gravity).
+    dof : str
+        DOF of the moment.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        m(t) [N·m].
+    """
+    from ship_gym.conventions import GRAVITY
+
+    z = np.asarray(elevation, dtype=float)
+    if z.ndim != 1 or z.size < 2 or not np.all(np.isfinite(z)):
+        raise ValueError(f"elevation must be a finite 1-D record, got shape {z.shape}")
+    if not (math.isfinite(dt) and dt > 0.0):
+        raise ValueError(f"dt must be a positive sample interval [s], got {dt!r}")
+    if not (math.isfinite(forward_speed) and math.isfinite(heading)):
+        raise ValueError(f"heading and forward_speed must be finite, got {heading!r}, "
+                         f"{forward_speed!r}")  # fmt: skip
+    if g is None:
+        g = float(getattr(database, "attrs", {}).get("g", GRAVITY))
+    omega_e = 2.0 * math.pi * np.fft.rfftfreq(z.size, dt)
+    omega = _wave_frequency_from_encounter(omega_e, forward_speed, heading, g)
+    x = roll_excitation_transfer(database, omega, heading, dof=dof)
+    return np.fft.irfft(np.conj(x) * np.fft.rfft(z), n=z.size)
 
 
 # ------------------------------------------------------------------------------------- model

@@ -240,6 +240,89 @@ def test_model_maps_to_roll_equation():
     assert TRUE.natural_frequency == pytest.approx(np.sqrt(0.4))
 
 
+# ----------------------------------------------------------------------- roll excitation input
+@pytest.fixture(scope="module")
+def s175_db():
+    from ship_gym.hydro import load_database
+
+    return load_database("s175")
+
+
+@pytest.mark.parametrize(("beta_deg", "speed"), [(90.0, 0.0), (150.0, 5.0)])
+def test_fft_filtered_elevation_equals_componentwise_excitation(s175_db, beta_deg, speed):
+    # a long-crested sea whose encounter frequencies lie on the FFT bins of the record (periodic
+    # record: no leakage, no wrap-around error), including one component below the database's
+    # lowest frequency (ω² law) and one above its highest (X₄ = 0); the ship at speed U heads
+    # north, so the elevation at O is ζ(U t, 0, t). Both paths use the same X₄(ω, β), so they
+    # agree to rounding: tolerance 1e-10 of the peak moment (measured ~1e-13)
+    from ship_gym.kinematics import encounter_frequency
+    from ship_gym.waves.wave_field import WaveField
+
+    n, dt = 4096, 0.1
+    beta = np.radians(beta_deg)
+    omega_e = 2.0 * np.pi * np.array([1, 8, 20, 40, 60, 100, 200, 300]) / (n * dt)
+    c = speed * np.cos(beta) / 9.81
+    omega = omega_e if c == 0.0 else (1.0 - np.sqrt(1.0 - 4.0 * c * omega_e)) / (2.0 * c)
+    np.testing.assert_allclose(encounter_frequency(omega, speed, beta, 9.81), omega_e)
+    rng = np.random.default_rng(3)
+    field = WaveField.from_components(
+        rng.uniform(0.1, 1.0, omega.size), omega, np.full(omega.size, beta),
+        rng.uniform(0.0, 2.0 * np.pi, omega.size), ramp_time=0.0, g=9.81,
+    )  # fmt: skip
+    t = np.arange(n) * dt
+    exact = ident.roll_excitation_moment(field, s175_db, t, forward_speed=speed)
+    eta = field.elevation(speed * t, 0.0, t)
+    filtered = ident.roll_excitation_from_elevation(eta, dt, s175_db, beta, forward_speed=speed)
+    assert np.max(np.abs(filtered - exact)) < 1e-10 * np.max(np.abs(exact))
+    assert np.std(exact) > 1e5  # a real moment [N·m], not zeros
+
+
+def test_roll_excitation_transfer_conventions(s175_db):
+    # long beam waves: the ship is heeled toward the wave slope, a crest at O at t = 0 travelling
+    # to starboard gives m ∝ −sin ωt (starboard up while the slope rises to starboard), i.e.
+    # Im X₄ < 0, Re X₄ ≈ 0; the hull's port/starboard mirror flips the roll moment; a negative
+    # (encounter) frequency gives the conjugate; above the database's frequencies X₄ = 0
+    x = ident.roll_excitation_transfer(s175_db, [0.1, -0.1, 5.0], np.pi / 2)
+    assert x[0].imag < 0.0 and abs(x[0].real) < 0.1 * abs(x[0].imag)
+    assert x[1] == np.conj(x[0]) and x[2] == 0.0
+    mirrored = ident.roll_excitation_transfer(s175_db, 0.5, 1.5 * np.pi)
+    assert mirrored == pytest.approx(-ident.roll_excitation_transfer(s175_db, 0.5, np.pi / 2))
+    with pytest.raises(ValueError, match="not unique"):
+        ident.roll_excitation_from_elevation(np.zeros(64), 0.1, s175_db, 0.3, forward_speed=5.0)
+
+
+def test_fit_driven_by_roll_excitation_recovers_physical_gain_and_lag(s175_db):
+    # eq. 2 driven by K m(t − τ), m the S175 roll moment [N·m] of a 30-component beam sea and
+    # K = 1/(I44 + A44) of the order of the ship's (≈ 4e-10 rad/s² per N·m); the generator
+    # interpolates m linearly at the RK4 stage times, as the fit does → exact optimum; tolerances
+    # from Nelder–Mead's xatol 1e-7 (scaled parameters) as in the tests above
+    from ship_gym.waves.wave_field import WaveField
+
+    rng = np.random.default_rng(5)
+    omega = np.linspace(0.3, 1.2, 30)
+    field = WaveField.from_components(
+        rng.uniform(0.1, 0.3, 30), omega, np.full(30, np.pi / 2),
+        rng.uniform(0.0, 2.0 * np.pi, 30), ramp_time=0.0,
+    )  # fmt: skip
+    t = np.arange(0.0, 200.0 + 1e-9, 0.2)
+    m = ident.roll_excitation_moment(field, s175_db, t)
+    gain, lag = 4.0e-10, 0.8
+    truth = ident.McCueCampbellModel(0.01, 0.5, 0.124, 0.1, input_gain=gain, input_lag=lag)
+    traj = truth.roll_equation().integrate(
+        0.05, 0.0, 200.0, 0.2, moment=lambda tt, p, v: gain * np.interp(tt - lag, t, m)
+    )
+    rec = ident.RollRecord(traj.time, traj.phi, traj.phidot, m, "roll_excitation_moment")
+    assert np.degrees(rec.roll.std()) > 1.0
+    res = ident.identify_roll_equation(
+        rec, omega=None, n_pieces=50, train_end=120.0, fit_input_lag=True, restarts=0
+    )
+    assert res.model.input_gain == pytest.approx(gain, rel=1e-4)
+    assert res.model.input_lag == pytest.approx(lag, abs=1e-3)
+    assert res.model.c_u1 == pytest.approx(0.124, rel=1e-4)
+    pred = ident.predict_roll(res.model, rec, train_end=120.0)
+    assert pred.prediction_window.nrmse_roll < 1e-3
+
+
 # ----------------------------------------------------------------------------- 6-DOF extension
 @pytest.mark.slow
 def test_sixdof_beam_sea_roll_natural_frequency_is_identified():
