@@ -224,10 +224,10 @@ def test_parallel_batch_equals_serial(s175):
 
 # ----------------------------------------------------------------------------- float32 wave sums
 # method="fast32" sums the wave terms in float32 (phases formed in float32, polynomials with
-# errors ≲ 3e-7 of each term): ζ and the dynamic pressure carry ~1e-6 of their size, while the
+# errors ≲ 5e-7 of each term): ζ and the dynamic pressure carry ~1e-6 of their size, while the
 # hydrostatic part and the integration stay float64. Against the reference the force and moment
-# must agree to 2e-6 of their largest component (observed ≲ 2e-8 on the S175 at 2400 faces;
-# the documented bound is 1e-7 of the hydrostatic scale, the tolerance leaves 20× room).
+# must agree to 2e-6 of their largest component (observed ≲ 3e-7 over these tests' seas and
+# ≲ 6e-7 over S175-full states, 1500 faces, Hs 5 m: the tolerance leaves ≥ 3× room).
 F32_TOL = 2e-6
 
 
@@ -318,6 +318,20 @@ def test_fast32_batch_equals_single(s175):
         single_precision=True,
     )
     np.testing.assert_array_equal(batch, single)
+
+
+@pytest.mark.parametrize("heave", [0.3, 6.0])
+def test_fast32_short_waves_take_the_clamped_decay(s175, heave):
+    # k up to 40 rad/m: (k/ln 2)·d reaches the unclamped exponential's limit of 125 within
+    # 2.2 m of the surface, so the waterline sub-blocks (d from 0 to several metres) run the
+    # clamped 2^−y for the short components; the deep sub-blocks leave them out (cut-off).
+    # Same 2e-6 bar as the other float32 tests.
+    hull, panels = s175
+    rng = np.random.default_rng(12)
+    k = np.r_[rng.uniform(0.02, 0.3, 20), rng.uniform(20.0, 40.0, 20)]
+    waves = WaveComponents.from_arrays(k, rng.uniform(-np.pi, np.pi, 40))
+    phasor = np.r_[np.full(20, 0.4), np.full(20, 0.01)] * np.exp(1j * rng.uniform(0, 6.3, 40))
+    _agree32(panels, hull, waves, phasor, np.array([3.0, 1.0, heave]), rotation_matrix(0.1, 0, 0.2))
 
 
 @pytest.mark.parametrize("direction", [np.pi, 0.6, -2.2])

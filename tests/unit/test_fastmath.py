@@ -10,8 +10,10 @@ import pytest
 from ship_gym.forces.fastmath import (
     cos_turns,
     cos_turns_f32,
+    cos_turns_nonneg_f32,
     exp2_neg,
     exp2_neg_f32,
+    exp2_neg_unclamped_f32,
     exp_neg,
     sincos,
     sincos_turns,
@@ -230,6 +232,32 @@ def _exp2_f32_loop(y):
     return out
 
 
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _cos_turns_nonneg_f32_loop(t, m):
+    out = np.empty_like(t)
+    for i in range(t.shape[0]):
+        out[i] = cos_turns_nonneg_f32(t[i], m[i])
+    return out
+
+
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _cos_turns_nonneg_f32_row(t, m):
+    # as in the Froude–Krylov kernel: one amplitude for the whole loop (its folded
+    # coefficients are loop-invariant)
+    out = np.empty_like(t)
+    for i in range(t.shape[0]):
+        out[i] = cos_turns_nonneg_f32(t[i], m)
+    return out
+
+
+@nb.njit(fastmath=_CALLER_FLAGS)
+def _exp2_unclamped_f32_loop(y):
+    out = np.empty_like(y)
+    for i in range(y.shape[0]):
+        out[i] = exp2_neg_unclamped_f32(y[i])
+    return out
+
+
 def test_cos_turns_f32_matches_numpy():
     # float32 arguments up to 20 turns (the Froude–Krylov kernel's phases stay below ~10):
     # the result is compared with the float64 cosine of the *float32* argument, so only the
@@ -257,12 +285,56 @@ def test_exp2_neg_f32_matches_numpy():
     assert _exp2_f32_loop(np.array([0.0], np.float32))[0] == pytest.approx(1.0, abs=1e-7)
 
 
+def test_cos_turns_nonneg_f32_matches_numpy():
+    # Same check as for cos_turns_f32, against the documented bound 6e-7·amplitude (a degree-8
+    # polynomial, 9.5e-8 with its float32 coefficients, the amplitude's √(2a) folded into them:
+    # measured 5.2e-7), over amplitudes from 0 to 1e3, per element and fixed per loop.
+    rng = np.random.default_rng(5)
+    t = np.concatenate([rng.uniform(-20, 20, 200_000), np.arange(-8, 8.25, 0.25)])
+    t = t.astype(np.float32)
+    ref = np.cos(2.0 * np.pi * t.astype(float))
+    for m in (
+        rng.uniform(0.0, 3.0, t.size).astype(np.float32),
+        rng.uniform(1e-3, 1e3, t.size).astype(np.float32),
+    ):
+        out = _cos_turns_nonneg_f32_loop(t, m)
+        assert out.dtype == np.float32
+        assert np.max(np.abs(out - m * ref) / np.maximum(m, 1e-30)) < 6e-7
+    for m in (np.float32(0.37), np.float32(2.3)):
+        out = _cos_turns_nonneg_f32_row(t, m)
+        assert np.max(np.abs(out - float(m) * ref)) < 6e-7 * float(m)
+    zero = _cos_turns_nonneg_f32_loop(t[:100], np.zeros(100, np.float32))
+    np.testing.assert_array_equal(zero, 0.0)
+
+
+def test_exp2_neg_unclamped_f32_matches_numpy():
+    # relative error ≲ 2.5e-7 (measured 2e-7: a degree-5 polynomial, 1.4e-7 with its float32
+    # coefficients) over its whole range −126 ≤ y ≤ 125, exact at integers (powers of two,
+    # built by an integer subtraction on the exponent field)
+    rng = np.random.default_rng(6)
+    y = np.concatenate([rng.uniform(-126.0, 125.0, 200_000), np.arange(-126.0, 125.5, 0.5)])
+    y = y.astype(np.float32)
+    out = _exp2_unclamped_f32_loop(y)
+    assert out.dtype == np.float32
+    assert np.max(np.abs(out / np.exp2(-y.astype(float)) - 1.0)) < 2.5e-7
+    n = np.arange(-126.0, 126.0, dtype=np.float32)
+    np.testing.assert_array_equal(_exp2_unclamped_f32_loop(n), np.exp2(-n.astype(float)))
+
+
 def test_float32_loops_vectorise_in_single_precision():
     # 8 lanes: the loops must compile to packed single-precision code with no double-precision
     # arithmetic (a Python float constant would silently promote them) and no libm calls
     _cos_turns_f32_loop(np.zeros(8, np.float32), np.ones(8, np.float32))
     _exp2_f32_loop(np.zeros(8, np.float32))
-    for fn in (_cos_turns_f32_loop, _exp2_f32_loop):
+    _cos_turns_nonneg_f32_row(np.zeros(8, np.float32), np.float32(1.0))
+    _exp2_unclamped_f32_loop(np.zeros(8, np.float32))
+    loops = (
+        _cos_turns_f32_loop,
+        _exp2_f32_loop,
+        _cos_turns_nonneg_f32_row,
+        _exp2_unclamped_f32_loop,
+    )
+    for fn in loops:
         asm = fn.inspect_asm(fn.signatures[0])
         if "ymm" not in asm and "zmm" not in asm:
             pytest.skip("no 256-bit vector code on this target")
