@@ -849,6 +849,15 @@ def _fk_core_f32(
 
 
 @nb.njit(cache=True, nogil=True)
+def _fk_batch_ship(s, mesh, rot, z0, k, cx, sx, amp, rho_g, out, single):  # pragma: no cover
+    """Ship s of a batch: the float32 or float64 one-ship kernel (``mesh`` = its 7 arrays)."""
+    if single:
+        _fk_one_ship_f32(*mesh, rot[s], 0.0, 0.0, z0[s], k[s], cx[s], sx[s], amp[s], rho_g, out[s])
+    else:
+        _fk_one_ship(*mesh, rot[s], 0.0, 0.0, z0[s], k[s], cx[s], sx[s], amp[s], rho_g, out[s])
+
+
+@nb.njit(cache=True, nogil=True)
 def _fk_batch(
     body: np.ndarray,
     tri: np.ndarray,
@@ -867,47 +876,9 @@ def _fk_batch(
     out: np.ndarray,
     single: bool,
 ) -> None:  # pragma: no cover - compiled
+    mesh = (body, tri, tri_last, tri_first, spread, weights, areas)
     for s in range(rot.shape[0]):
-        if single:
-            _fk_one_ship_f32(
-                body,
-                tri,
-                tri_last,
-                tri_first,
-                spread,
-                weights,
-                areas,
-                rot[s],
-                0.0,
-                0.0,
-                z0[s],
-                k[s],
-                cx[s],
-                sx[s],
-                amp[s],
-                rho_g,
-                out[s],
-            )
-        else:
-            _fk_one_ship(
-                body,
-                tri,
-                tri_last,
-                tri_first,
-                spread,
-                weights,
-                areas,
-                rot[s],
-                0.0,
-                0.0,
-                z0[s],
-                k[s],
-                cx[s],
-                sx[s],
-                amp[s],
-                rho_g,
-                out[s],
-            )
+        _fk_batch_ship(s, mesh, rot, z0, k, cx, sx, amp, rho_g, out, single)
 
 
 @nb.njit(cache=True, nogil=True, parallel=True)
@@ -929,47 +900,9 @@ def _fk_batch_parallel(
     out: np.ndarray,
     single: bool,
 ) -> None:  # pragma: no cover - compiled
+    mesh = (body, tri, tri_last, tri_first, spread, weights, areas)
     for s in nb.prange(rot.shape[0]):
-        if single:
-            _fk_one_ship_f32(
-                body,
-                tri,
-                tri_last,
-                tri_first,
-                spread,
-                weights,
-                areas,
-                rot[s],
-                0.0,
-                0.0,
-                z0[s],
-                k[s],
-                cx[s],
-                sx[s],
-                amp[s],
-                rho_g,
-                out[s],
-            )
-        else:
-            _fk_one_ship(
-                body,
-                tri,
-                tri_last,
-                tri_first,
-                spread,
-                weights,
-                areas,
-                rot[s],
-                0.0,
-                0.0,
-                z0[s],
-                k[s],
-                cx[s],
-                sx[s],
-                amp[s],
-                rho_g,
-                out[s],
-            )
+        _fk_batch_ship(s, mesh, rot, z0, k, cx, sx, amp, rho_g, out, single)
 
 
 # ----------------------------------------------------------------------------- public API
