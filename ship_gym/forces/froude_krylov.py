@@ -407,6 +407,30 @@ def _integrate(
         out[3 + q] += rot[q, 0] * f[3] + rot[q, 1] * f[4] + rot[q, 2] * f[5]
 
 
+@nb.njit(fastmath=_FM, cache=True)
+def _fold_components(
+    k, cos_dir, sin_dir, amp, x0, y0, kxt, kyt, k2, mod, offset
+):  # pragma: no cover
+    """Per-component set-up of the kernels, into float64 or float32 arrays (computed in float64).
+
+    Wave vector [turns/m], k / ln 2 [1/m], and Re cⱼ e^{−iθ} = |cⱼ| cos(θ − arg cⱼ) as modulus
+    [m] and phase offset [turns], with the ship's horizontal position (x0, y0) folded in.
+    Returns crest = Σ|cⱼ| [m], a bound of ζ everywhere.
+    """
+    crest = 0.0
+    for j in range(k.shape[0]):
+        ax = k[j] * cos_dir[j] * _INV_TWO_PI
+        ay = k[j] * sin_dir[j] * _INV_TWO_PI
+        kxt[j] = ax
+        kyt[j] = ay
+        k2[j] = k[j] * _INV_LN2
+        mod[j] = abs(amp[j])
+        t = ax * x0 + ay * y0 - np.arctan2(amp[j].imag, amp[j].real) * _INV_TWO_PI
+        offset[j] = t - np.rint(t)
+        crest += abs(amp[j])
+    return crest
+
+
 @nb.njit(fastmath=_FM, cache=True, nogil=True)
 def _fk_one_ship(
     body: np.ndarray,
@@ -433,23 +457,8 @@ def _fk_one_ship(
     arrays; amp the complex amplitudes cⱼ(t) of ζ = Re Σ cⱼ e^{−ikⱼ(X cos χⱼ + Y sin χⱼ)} (with
     x0 = y0 = 0: already local, :meth:`WaveComponents.local_amplitudes`).
     """
-    n_c = k.shape[0]
-    # Per component: wave vector in turns/m, k / ln 2, and Re cⱼ e^{−iθ} = |cⱼ| cos(θ − arg cⱼ)
-    # as modulus and phase offset in turns, with the ship's horizontal position folded in.
-    kxt = np.empty(n_c)
-    kyt = np.empty(n_c)
-    k2 = np.empty(n_c)
-    mod = np.empty(n_c)
-    offset = np.empty(n_c)
-    crest = 0.0  # Σ|cⱼ| ≥ ζ everywhere
-    for j in range(n_c):
-        kxt[j] = k[j] * cos_dir[j] * _INV_TWO_PI
-        kyt[j] = k[j] * sin_dir[j] * _INV_TWO_PI
-        k2[j] = k[j] * _INV_LN2
-        mod[j] = abs(amp[j])
-        t = kxt[j] * x0 + kyt[j] * y0 - np.arctan2(amp[j].imag, amp[j].real) * _INV_TWO_PI
-        offset[j] = t - np.rint(t)
-        crest += mod[j]
+    kxt, kyt, k2, mod, offset = np.empty((5, k.shape[0]))
+    crest = _fold_components(k, cos_dir, sin_dir, amp, x0, y0, kxt, kyt, k2, mod, offset)
     _fk_core(
         body, tri, tri_last, tri_first, spread, weights, areas, rot, z0, kxt, kyt, k2,
         mod, offset, crest, rho_g, out,
@@ -673,23 +682,8 @@ def _fk_one_ship_f32(
     out: np.ndarray,
 ) -> None:  # pragma: no cover - compiled
     """:func:`_fk_one_ship` with the wave sums in float32 (same arguments, float64 arrays)."""
-    n_c = k.shape[0]
-    kxt = np.empty(n_c, dtype=np.float32)
-    kyt = np.empty(n_c, dtype=np.float32)
-    k2 = np.empty(n_c, dtype=np.float32)
-    mod = np.empty(n_c, dtype=np.float32)
-    offset = np.empty(n_c, dtype=np.float32)
-    crest = 0.0
-    for j in range(n_c):
-        ax = k[j] * cos_dir[j] * _INV_TWO_PI
-        ay = k[j] * sin_dir[j] * _INV_TWO_PI
-        kxt[j] = ax
-        kyt[j] = ay
-        k2[j] = k[j] * _INV_LN2
-        mod[j] = abs(amp[j])
-        t = ax * x0 + ay * y0 - np.arctan2(amp[j].imag, amp[j].real) * _INV_TWO_PI
-        offset[j] = t - np.rint(t)
-        crest += abs(amp[j])
+    kxt, kyt, k2, mod, offset = np.empty((5, k.shape[0]), dtype=np.float32)
+    crest = _fold_components(k, cos_dir, sin_dir, amp, x0, y0, kxt, kyt, k2, mod, offset)
     _fk_core_f32(
         body, tri, tri_last, tri_first, spread, weights, areas, rot, z0, kxt, kyt, k2,
         mod, offset, crest, rho_g, out,
