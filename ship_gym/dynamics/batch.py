@@ -541,7 +541,7 @@ class BatchDiffraction(BatchForceModel):
         if not isinstance(template, Diffraction):
             raise ValueError(f"template must be a Diffraction model; got {type(template).__name__}")
         self.template = template
-        self._tol = template._heading_tol
+        self._tol = template.heading_tolerance
         self._encounter = template.frequency == "encounter"
         self.bind(1, 1)
 

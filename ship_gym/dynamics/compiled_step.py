@@ -12,9 +12,11 @@ buffers. The force set is the fast path of :func:`ship_gym.dynamics.ship.build_s
   Matusiak's constant coefficients (case 2a/2b: −B_c ν_p, A_c on the left;
   :class:`ship_gym.forces.radiation.ConstantCoefficientRadiation`), for the cost comparison;
 * linear diffraction F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ) with the transfer functions
-  cached at a reference heading (:class:`ship_gym.forces.diffraction.Diffraction`; a refresh
-  when ψ leaves the tolerance band returns to Python for the table look-up, then the loop
-  goes on);
+  cached at a reference heading (:class:`ship_gym.forces.diffraction.Diffraction`); when ψ
+  leaves the tolerance band the cache is refreshed inside the compiled loop by the model's
+  bilinear (ω', β) look-up, the same arithmetic as :meth:`Diffraction.heading_expansion`
+  (only ``above_range="raise"`` with a component above the table returns to Python, to
+  raise);
 * viscous roll damping −(B1 p + B2 |p| p) (:class:`ship_gym.forces.viscous.ViscousRollDamping`);
 * gravity, Coriolis–centripetal terms and kinematics J(η)ν;
 * Holloway's μ-Taylor scheme (Holloway 2007, eq. 4, 6–9; one evaluation per step) after two
@@ -85,6 +87,27 @@ def _csr(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
 # ============================================================================================
 # compiled pieces
 # ============================================================================================
+def _diffraction_tables(model: Diffraction | None, wave_field: WaveField | None, n_c: int):
+    """The data of :func:`_refresh_diffraction`: the model's periodically extended table, its
+    headings and frequencies, the components' χ, ω, k, the frequency rule, the difference step
+    h, the ``above_range`` rule, work arrays and the refresh counter (dummies without a
+    model, typed alike)."""
+    count = np.zeros(1, dtype=np.int64)
+    work = np.zeros((3, n_c, 6), dtype=np.complex128)
+    if model is None or wave_field is None:
+        return (
+            np.zeros((2, 2, 6), dtype=np.complex128), np.arange(2.0), np.arange(1.0, 3.0),
+            np.zeros(n_c), np.zeros(n_c), np.zeros(n_c), False, 1e-4, False, work, count,
+        )  # fmt: skip
+    w = wave_field
+    table, beta = model.interpolation_table()
+    return (
+        _own(table, np.complex128), _own(beta), _own(model.omega), _own(w.direction),
+        _own(w.omega), _own(w.wavenumber), model.frequency == "encounter", model.heading_step,
+        model.above_range == "raise", work, count,
+    )  # fmt: skip
+
+
 @nb.njit(cache=True, nogil=True)
 def _rigid_terms(q, v, mass, weight, cog, held_angle, rot, total, qdot):  # pragma: no cover
     """R(φ, θ, ψ), gravity − Coriolis (body axes, about O) and η̇ = J(η) ν of one ship.
@@ -193,6 +216,71 @@ def _radiation(
 
 
 @nb.njit(cache=True, nogil=True)
+def _transfer_at(heading, speed, diff, out):  # pragma: no cover - compiled
+    """out[j] = X_D(ω'ⱼ, βⱼ) at ship heading ψ = ``heading`` [rad] for every component; returns
+    the number of components above the table's ω_max.
+
+    The arithmetic of :meth:`Diffraction.diffraction_transfer` and
+    :meth:`Diffraction.heading_expansion` (β = (χⱼ − ψ) mod 2π, ω' = ωⱼ − kⱼ U cos β at
+    encounter frequency; bilinear in (|ω'|, β), the ω² law below ω_min, zero above ω_max,
+    conjugate for ω' < 0), element by element instead of on arrays.
+    """
+    table, beta_ext, omega_db, direction, omega_c, wavenumber, encounter = diff[:7]
+    n_beta = beta_ext.shape[0]
+    n_omega = omega_db.shape[0]
+    w_min, w_max = omega_db[0], omega_db[n_omega - 1]
+    n_above = 0
+    for j in range(direction.shape[0]):
+        b = np.mod(direction[j] - heading, _TWO_PI)
+        w = omega_c[j] - wavenumber[j] * speed * math.cos(b) if encounter else omega_c[j]
+        aw = abs(w)
+        ib = min(max(np.searchsorted(beta_ext, b, side="right") - 1, 0), n_beta - 2)
+        fb = (b - beta_ext[ib]) / (beta_ext[ib + 1] - beta_ext[ib])
+        wc = min(max(aw, w_min), w_max)
+        iw = min(max(np.searchsorted(omega_db, wc, side="right") - 1, 0), n_omega - 2)
+        fw = (wc - omega_db[iw]) / (omega_db[iw + 1] - omega_db[iw])
+        c00, c01 = (1.0 - fw) * (1.0 - fb), (1.0 - fw) * fb
+        c10, c11 = fw * (1.0 - fb), fw * fb
+        above = aw > w_max * (1.0 + 1e-12)
+        n_above += above
+        scale = (aw / w_min) ** 2
+        for o in range(6):
+            x = (
+                c00 * table[iw, ib, o]
+                + c01 * table[iw, ib + 1, o]
+                + c10 * table[iw + 1, ib, o]
+                + c11 * table[iw + 1, ib + 1, o]
+            )
+            if aw < w_min:
+                x = x * scale
+            if above:
+                x = 0.0j
+            out[j, o] = x.conjugate() if w < 0.0 else x
+    return n_above
+
+
+@nb.njit(cache=True, nogil=True)
+def _refresh_diffraction(psi, speed, diff, xd, dxd, diff_ref):  # pragma: no cover - compiled
+    """Cache X_D and ∂X_D/∂ψ (central difference over ±h) at heading ψ, as
+    :meth:`Diffraction.heading_expansion`; returns False, leaving the cache as it was, when the
+    model must raise (``above_range="raise"`` and a component above ω_max)."""
+    h, must_raise, work, count = diff[7:]
+    above = _transfer_at(psi, speed, diff, work[0])
+    if above > 0 and must_raise:
+        return False
+    _transfer_at(psi + h, speed, diff, work[1])
+    _transfer_at(psi - h, speed, diff, work[2])
+    for j in range(xd.shape[0]):
+        for o in range(6):
+            xd[j, o] = work[0, j, o]
+            dxd[j, o] = (work[1, j, o] - work[2, j, o]) / (2.0 * h)
+    diff_ref[0] = psi
+    diff_ref[1] = speed
+    count[0] += 1
+    return True
+
+
+@nb.njit(cache=True, nogil=True)
 def _diffraction(psi, local, xd, dxd, diff_ref, total):  # pragma: no cover - compiled
     """F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ), X_D cached at heading diff_ref[0]."""
     dpsi = (psi - diff_ref[0] + math.pi) % _TWO_PI - math.pi
@@ -224,21 +312,21 @@ def _evaluate(
     # radiation
     speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
     # diffraction
-    has_diff, xd, dxd, diff_ref, tol,
+    has_diff, xd, dxd, diff_ref, tol, diff,
     # viscous roll
     b1, b2,
     # outputs
     acc, zdot, qdot, status_psi,
 ):  # fmt: skip  # pragma: no cover - compiled
-    """ν̇, ż and η̇ at (t, q, v, z); returns False (and the heading in status_psi[0]) when the
-    diffraction cache is stale, before anything else is computed."""
+    """ν̇, ż and η̇ at (t, q, v, z). A stale diffraction cache is refreshed first
+    (:func:`_refresh_diffraction`); returns False (and the heading in status_psi[0]), before
+    anything else is computed, when that refresh must be left to Python."""
     if has_diff:
         psi = q[5]
         ref = diff_ref[0]
-        if np.isnan(ref) or diff_ref[1] != speed:
-            status_psi[0] = psi
-            return False
-        if abs((psi - ref + math.pi) % _TWO_PI - math.pi) > tol:
+        stale = np.isnan(ref) or diff_ref[1] != speed
+        stale = stale or abs((psi - ref + math.pi) % _TWO_PI - math.pi) > tol
+        if stale and not _refresh_diffraction(psi, speed, diff, xd, dxd, diff_ref):
             status_psi[0] = psi
             return False
     rot = np.empty((3, 3))
@@ -296,7 +384,7 @@ def _advance(
     amplitude, omega_t, phase_t, ramp_time, kxt, kyt, k2, kxt32, kyt32, k232,
     mass, weight, cog, held_angle, m_inv,
     speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
-    has_diff, xd, dxd, diff_ref, tol,
+    has_diff, xd, dxd, diff_ref, tol, diff,
     b1, b2,
     status_psi,
 ):  # fmt: skip  # pragma: no cover - compiled
@@ -324,7 +412,7 @@ def _advance(
             amplitude, omega_t, phase_t, ramp_time, kxt, kyt, k2, kxt32, kyt32, k232, mass,
             weight, cog,
             held_angle, m_inv, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx,
-            c_val, d_mat, has_d, has_diff, xd, dxd, diff_ref, tol, b1, b2, a_c, zd, qd,
+            c_val, d_mat, has_d, has_diff, xd, dxd, diff_ref, tol, diff, b1, b2, a_c, zd, qd,
             status_psi,
         )  # fmt: skip
         if not ok:
@@ -356,7 +444,7 @@ def _advance(
                     rho_g, single, amplitude, omega_t, phase_t, ramp_time, kxt, kyt, k2, kxt32,
                     kyt32, k232, mass, weight, cog, held_angle, m_inv, speed, a_ptr, a_idx,
                     a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d, has_diff, xd,
-                    dxd, diff_ref, tol, b1, b2, ao, go, do, status_psi,
+                    dxd, diff_ref, tol, diff, b1, b2, ao, go, do, status_psi,
                 )  # fmt: skip
                 if not ok:
                     resume[0] = stage + 1
@@ -604,7 +692,8 @@ class CompiledShip:
     n_steps : int
         Steps since the last reset.
     n_refreshes : int
-        Diffraction cache refreshes (table look-ups in Python) since construction.
+        Diffraction cache refreshes (heading changes beyond the model's tolerance) since
+        construction.
     """
 
     def __init__(
@@ -693,8 +782,9 @@ class CompiledShip:
         self._xd = np.zeros((n_c, 6), dtype=np.complex128)
         self._dxd = np.zeros((n_c, 6), dtype=np.complex128)
         self._diff_ref = np.array([np.nan, np.nan])  # heading and speed of the cache
-        tol = m.diffraction._heading_tol if has_diff else 0.0
+        tol = m.diffraction.heading_tolerance if has_diff else 0.0
         self._diff_tol = float(tol)
+        self._diff = _diffraction_tables(m.diffraction if has_diff else None, wave_field, n_c)
         visc = m.viscous.coefficients if m.viscous is not None else None
         self._viscous = (float(visc.b1), float(visc.b2)) if visc is not None else (0.0, 0.0)
         mu_arr = np.ones(6) if mu is None else np.broadcast_to(np.asarray(mu, float), (6,))
@@ -716,8 +806,13 @@ class CompiledShip:
         self._resume = np.zeros(1, dtype=np.int64)
         self._status_psi = np.zeros(1)
         self.n_steps = 0
-        self.n_refreshes = 0
+        self._python_refreshes = 0
         self.reset()
+
+    @property
+    def n_refreshes(self) -> int:
+        """Diffraction cache refreshes since construction (compiled and in Python)."""
+        return int(self._diff[-1][0]) + self._python_refreshes
 
     # ------------------------------------------------------------------ state
     @property
@@ -761,7 +856,7 @@ class CompiledShip:
         self._dxd[:] = dxd
         self._diff_ref[0] = psi
         self._diff_ref[1] = self.forward_speed
-        self.n_refreshes += 1
+        self._python_refreshes += 1
 
     def advance(self, n_steps: int = 1) -> None:
         """Take ``n_steps`` steps of ``dt`` (one compiled call, plus one per diffraction
@@ -782,7 +877,7 @@ class CompiledShip:
                 self._k, self._pending, *self._hist, *self._stages, self._resume, self.mu,
                 self.dt, self.max_abs_velocity,
                 *self._hull, *self._waves, *self._rigid, *self._radiation, self._has_diff,
-                self._xd, self._dxd, self._diff_ref, self._diff_tol, *self._viscous,
+                self._xd, self._dxd, self._diff_ref, self._diff_tol, self._diff, *self._viscous,
                 self._status_psi,
             )  # fmt: skip
             self.n_steps += done

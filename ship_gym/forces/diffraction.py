@@ -272,6 +272,23 @@ class Diffraction(ForceModel):
         out[neg] = np.conj(out[neg])
         return out.reshape(*shape, N_DOF)
 
+    @property
+    def heading_step(self) -> float:
+        """Half-width h [rad] of the central difference ∂X_D/∂ψ ≈ (X_D(ψ + h) − X_D(ψ − h))/2h:
+        the heading tolerance, at least 1e-4 rad."""
+        return max(self._heading_tol, 1e-4)
+
+    @property
+    def heading_tolerance(self) -> float:
+        """Heading change [rad] beyond which the cached X_D is recomputed."""
+        return self._heading_tol
+
+    def interpolation_table(self) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
+        """The bilinear look-up's data: X_D (n_ω, n_β + 2, 6) on (:attr:`omega`, β) with the
+        headings extended periodically by one below 0 and one above 2π, and those headings
+        (n_β + 2,) [rad] (copies)."""
+        return self._table.copy(), self._beta.copy()
+
     def heading_expansion(
         self,
         direction: np.ndarray,
@@ -308,7 +325,7 @@ class Diffraction(ForceModel):
             return self.diffraction_transfer(w, beta), w, beta
 
         x, w, beta = at(psi)
-        h = max(self._heading_tol, 1e-4)
+        h = self.heading_step
         dx = (at(np.asarray(psi) + h)[0] - at(np.asarray(psi) - h)[0]) / (2.0 * h)
         return x, dx, w, beta
 

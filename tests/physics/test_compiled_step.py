@@ -161,3 +161,62 @@ def test_bad_input_is_rejected():
         build_compiled_ship(ShipSetup(integrator="holloway", radiation="convolution"), None)
     with pytest.raises(NotImplementedError, match="'holloway' and 'rk4'"):
         build_compiled_ship(ShipSetup(integrator="abm"), None)
+
+
+@pytest.mark.parametrize("speed", [0.0, 7.5])
+def test_compiled_diffraction_refresh_equals_the_models_look_up(speed):
+    # the refresh inside the compiled loop (no return to Python) against
+    # Diffraction.heading_expansion, at headings all around the circle and at forward speed
+    # (encounter frequencies, some beyond the table: zero, some negative: conjugated)
+    from ship_gym.dynamics.compiled_step import _refresh_diffraction
+
+    ship = build_compiled_ship(ShipSetup(integrator="holloway", speed=speed), _field())
+    model, w = ship.models.diffraction, ship.wave_field
+    n_c = w.n_components
+    for psi in np.radians([0.0, 37.0, 90.0, 179.9, 180.0, 251.0, -33.0, 719.0]):
+        xd = np.zeros((n_c, 6), dtype=complex)
+        dxd = np.zeros((n_c, 6), dtype=complex)
+        ref = np.array([np.nan, np.nan])
+        assert _refresh_diffraction(psi, speed, ship._diff, xd, dxd, ref)
+        x, dx, _, _ = model.heading_expansion(w.direction, w.omega, w.wavenumber, psi, speed)
+        # the same arithmetic; np.cos (numpy's SIMD loop) and math.cos may differ by an ulp
+        np.testing.assert_allclose(xd, x, rtol=1e-13, atol=1e-13 * np.abs(x).max())
+        np.testing.assert_allclose(dxd, dx, rtol=1e-9, atol=1e-9 * np.abs(dx).max())
+        np.testing.assert_array_equal(ref, [psi, speed])
+
+
+def test_turning_ship_refreshes_in_the_compiled_loop():
+    # a beam-sea ship turned by the waves leaves the 0.5° band many times: every refresh is done
+    # inside the one compiled call (no return to Python), and the run equals BatchSimulator's
+    setup = ShipSetup(integrator="holloway")
+    field = _field(beta=np.radians(100.0))
+    ship = build_compiled_ship(setup, field, wave_heading=np.radians(100.0))
+    batch = build_batch_simulator(setup, [field], wave_heading=np.radians(100.0))
+    mine, theirs = ship.run(400, record_every=400), batch.run(400)
+    assert ship.n_refreshes > 3 and ship._python_refreshes == 0
+    err = _rel_err(np.stack([mine["eta"][0], mine["eta"][-1]]), theirs["eta"][[0, -1], 0])
+    assert err.max() < REL_TOL
+
+
+def test_diffraction_above_range_raise_is_raised_from_python():
+    # above_range="raise" cannot raise inside numba: the compiled refresh hands such a look-up
+    # back to the model, which raises with its message, and the state stays as it was
+    from ship_gym.dynamics.ship import build_force_models
+    from ship_gym.forces.diffraction import Diffraction
+    from ship_gym.hull import load_hull
+    from ship_gym.hydro import load_database
+
+    setup = ShipSetup(integrator="holloway", speed=12.0)
+    field = _field(beta=np.pi)  # head seas at 12 m/s: encounter frequencies beyond the table
+    hull, database = load_hull(setup.hull), load_database(setup.database)
+    built = build_force_models(setup, hull, database, field, None, np.pi)
+    models = [
+        Diffraction(database, field, above_range="raise") if isinstance(m, Diffraction) else m
+        for m in (built[0] if isinstance(built, tuple) else built)
+    ]
+    ship = CompiledShip(hull, models, field, forward_speed=12.0)
+    eta = ship.eta.copy()
+    with pytest.raises(ValueError, match="above_range='raise'"):
+        ship.advance(3)
+    np.testing.assert_array_equal(ship.eta, eta)
+    assert ship.n_refreshes == 0
