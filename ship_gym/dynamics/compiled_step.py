@@ -859,14 +859,18 @@ class CompiledShip:
         self._python_refreshes += 1
 
     def advance(self, n_steps: int = 1) -> None:
-        """Take ``n_steps`` steps of ``dt`` (one compiled call, plus one per diffraction
-        refresh).
+        """Take ``n_steps`` steps of ``dt`` in one compiled call (diffraction refreshes included;
+        a look-up that must raise comes back to Python, see :func:`_refresh_diffraction`).
 
         Raises
         ------
         SimulationDiverged
             If a step produces a non-finite or too fast state; the ship keeps the state of the
             start of that step.
+        ValueError
+            If the diffraction model has ``above_range="raise"`` and an encounter frequency
+            leaves its table (raised by the model; the ship keeps the state of the last
+            completed step).
         """
         left = int(n_steps)
         if left < 0:
