@@ -47,7 +47,7 @@ from numpy.typing import NDArray
 from ship_gym.conventions import SURGE
 from ship_gym.dynamics.ship import Sea, ShipSetup, build_force_models
 from ship_gym.dynamics.simulator import SimulationDiverged, left_hand_side
-from ship_gym.forces.diffraction import Diffraction
+from ship_gym.forces.diffraction import Diffraction, transfer_element
 from ship_gym.forces.fastmath import sincos_turns
 from ship_gym.forces.froude_krylov import FroudeKrylovHydrostatics, _fk_core, _fk_core_f32
 from ship_gym.forces.radiation import ConstantCoefficientRadiation, RadiationMemory
@@ -220,42 +220,16 @@ def _transfer_at(heading, speed, diff, out):  # pragma: no cover - compiled
     """out[j] = X_D(ω'ⱼ, βⱼ) at ship heading ψ = ``heading`` [rad] for every component; returns
     the number of components above the table's ω_max.
 
-    The arithmetic of :meth:`Diffraction.diffraction_transfer` and
-    :meth:`Diffraction.heading_expansion` (β = (χⱼ − ψ) mod 2π, ω' = ωⱼ − kⱼ U cos β at
-    encounter frequency; bilinear in (|ω'|, β), the ω² law below ω_min, zero above ω_max,
-    conjugate for ω' < 0), element by element instead of on arrays.
+    As :meth:`Diffraction.heading_expansion`: β = (χⱼ − ψ) mod 2π and, at encounter
+    frequency, ω' = ωⱼ − kⱼ U cos β, then the model's own element look-up
+    (:func:`ship_gym.forces.diffraction.transfer_element`).
     """
     table, beta_ext, omega_db, direction, omega_c, wavenumber, encounter = diff[:7]
-    n_beta = beta_ext.shape[0]
-    n_omega = omega_db.shape[0]
-    w_min, w_max = omega_db[0], omega_db[n_omega - 1]
     n_above = 0
     for j in range(direction.shape[0]):
         b = np.mod(direction[j] - heading, _TWO_PI)
         w = omega_c[j] - wavenumber[j] * speed * math.cos(b) if encounter else omega_c[j]
-        aw = abs(w)
-        ib = min(max(np.searchsorted(beta_ext, b, side="right") - 1, 0), n_beta - 2)
-        fb = (b - beta_ext[ib]) / (beta_ext[ib + 1] - beta_ext[ib])
-        wc = min(max(aw, w_min), w_max)
-        iw = min(max(np.searchsorted(omega_db, wc, side="right") - 1, 0), n_omega - 2)
-        fw = (wc - omega_db[iw]) / (omega_db[iw + 1] - omega_db[iw])
-        c00, c01 = (1.0 - fw) * (1.0 - fb), (1.0 - fw) * fb
-        c10, c11 = fw * (1.0 - fb), fw * fb
-        above = aw > w_max * (1.0 + 1e-12)
-        n_above += above
-        scale = (aw / w_min) ** 2
-        for o in range(6):
-            x = (
-                c00 * table[iw, ib, o]
-                + c01 * table[iw, ib + 1, o]
-                + c10 * table[iw + 1, ib, o]
-                + c11 * table[iw + 1, ib + 1, o]
-            )
-            if aw < w_min:
-                x = x * scale
-            if above:
-                x = 0.0j
-            out[j, o] = x.conjugate() if w < 0.0 else x
+        n_above += transfer_element(w, b, table, beta_ext, omega_db, out, j)
     return n_above
 
 

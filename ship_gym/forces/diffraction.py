@@ -82,6 +82,7 @@ from __future__ import annotations
 import math
 from typing import Literal
 
+import numba as nb
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
@@ -97,6 +98,52 @@ Frequency = Literal["encounter", "wave"]
 AboveRange = Literal["zero", "raise"]
 
 _TWO_PI = 2.0 * math.pi
+
+
+@nb.njit(cache=True, nogil=True)
+def transfer_element(w, b, table, beta_ext, omega_db, out, j):  # pragma: no cover - compiled
+    """out[j, :] = X_D(ω', β) by the model's rule; returns True if |ω'| > ω_max.
+
+    ``w`` signed ω' [rad/s], ``b`` β in [0, 2π) [rad]; ``table`` (n_ω, n_β + 2, 6) and
+    ``beta_ext`` are :meth:`Diffraction.interpolation_table`, ``omega_db`` :attr:`omega`.
+    Bilinear in (|ω'|, β), the ω_min row scaled by (|ω'|/ω_min)² below ω_min, zero above
+    ω_max, conjugated for ω' < 0. The one implementation of the look-up: the model's
+    :meth:`~Diffraction.diffraction_transfer` loops over it, and so does the compiled
+    single-ship stepper (:mod:`ship_gym.dynamics.compiled_step`) when it refreshes its cache.
+    """
+    n_beta = beta_ext.shape[0]
+    n_omega = omega_db.shape[0]
+    w_min, w_max = omega_db[0], omega_db[n_omega - 1]
+    aw = abs(w)
+    ib = min(max(np.searchsorted(beta_ext, b, side="right") - 1, 0), n_beta - 2)
+    fb = (b - beta_ext[ib]) / (beta_ext[ib + 1] - beta_ext[ib])
+    wc = min(max(aw, w_min), w_max)
+    iw = min(max(np.searchsorted(omega_db, wc, side="right") - 1, 0), n_omega - 2)
+    fw = (wc - omega_db[iw]) / (omega_db[iw + 1] - omega_db[iw])
+    c00, c01 = (1.0 - fw) * (1.0 - fb), (1.0 - fw) * fb
+    c10, c11 = fw * (1.0 - fb), fw * fb
+    above = aw > w_max * (1.0 + 1e-12)
+    scale = (aw / w_min) ** 2
+    for o in range(out.shape[1]):
+        x = (
+            c00 * table[iw, ib, o]
+            + c01 * table[iw, ib + 1, o]
+            + c10 * table[iw + 1, ib, o]
+            + c11 * table[iw + 1, ib + 1, o]
+        )
+        if aw < w_min:
+            x = x * scale
+        if above:
+            x = 0.0j
+        out[j, o] = x.conjugate() if w < 0.0 else x
+    return above
+
+
+@nb.njit(cache=True, nogil=True)
+def _transfer_elements(w, b, table, beta_ext, omega_db, out):  # pragma: no cover - compiled
+    """:func:`transfer_element` for every element of the 1-D arrays w, b."""
+    for j in range(w.shape[0]):
+        transfer_element(w[j], b[j], table, beta_ext, omega_db, out, j)
 
 
 class Diffraction(ForceModel):
@@ -244,32 +291,15 @@ class Diffraction(ForceModel):
         if not (np.all(np.isfinite(w)) and np.all(np.isfinite(b))):
             raise ValueError("omega and beta must be finite")
         aw = np.abs(w)
-        w_min, w_max = self.omega[0], self.omega[-1]
+        w_max = self.omega[-1]
         above = aw > w_max * (1.0 + 1e-12)
         if np.any(above) and self.above_range == "raise":
             raise ValueError(
                 f"lookup frequencies {aw[above]} rad/s exceed the database maximum "
                 f"ω_max = {w_max:.6g} rad/s (above_range='raise')"
             )
-        # β weights
-        ib = np.clip(np.searchsorted(self._beta, b, side="right") - 1, 0, self._beta.size - 2)
-        fb = (b - self._beta[ib]) / (self._beta[ib + 1] - self._beta[ib])
-        # ω weights (frequencies below ω_min use the ω_min row and the ω² law)
-        wc = np.clip(aw, w_min, w_max)
-        iw = np.clip(np.searchsorted(self.omega, wc, side="right") - 1, 0, self.omega.size - 2)
-        fw = (wc - self.omega[iw]) / (self.omega[iw + 1] - self.omega[iw])
-        t = self._table
-        out = (
-            ((1 - fw) * (1 - fb))[:, None] * t[iw, ib]
-            + ((1 - fw) * fb)[:, None] * t[iw, ib + 1]
-            + (fw * (1 - fb))[:, None] * t[iw + 1, ib]
-            + (fw * fb)[:, None] * t[iw + 1, ib + 1]
-        )
-        low = aw < w_min
-        out[low] *= ((aw[low] / w_min) ** 2)[:, None]
-        out[above] = 0.0
-        neg = w < 0
-        out[neg] = np.conj(out[neg])
+        out = np.empty((w.size, N_DOF), dtype=complex)
+        _transfer_elements(w, b, self._table, self._beta, self.omega, out)
         return out.reshape(*shape, N_DOF)
 
     @property
