@@ -370,7 +370,7 @@ class RideController(Baseline):
     T-foil command gives an upward force and a bow-up moment
     (:class:`ship_gym.control.stabilisers.RideController`), so both terms damp.
 
-    Defaults tuned on RideControl-v0 (S175, Fn 0.3, head/bow seas Hs 2–4 m, Tp 7–11 s; 60 s
+    Defaults tuned on RideControl-v1 (S175, Fn 0.3, head/bow seas Hs 2–4 m, Tp 7–11 s; 60 s
     episodes, seeds 0–7): pitch-rate damping alone, k_pitch = 40 action units/(rad/s) (the ±15°
     foil saturates at q ≈ 1.4°/s), lowers the RMS vertical acceleration at the passenger by 6.6 %
     (seeds 0–3) and 4.3 % (seeds 4–7) against zero action, and the return with it. Heave-velocity

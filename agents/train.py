@@ -130,7 +130,7 @@ def config_from_mapping(data: Mapping[str, Any]) -> TrainConfig:
     algo = data.get("algorithm", {})
     training = data.get("training", {})
     if "id" not in env:
-        raise ValueError('the config needs [env] id = "ship_gym/<Name>-v0"')
+        raise ValueError('the config needs [env] id = "ship_gym/<Name>-vN"')
     return TrainConfig(
         env_id=env["id"],
         n_envs=env.get("n_envs", 8),

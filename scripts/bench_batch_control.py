@@ -8,9 +8,9 @@ rudder="autopilot", fins="command", t_foil="command")``), Holloway's integrator,
 beam-quartering seas (Hs = 4 m, Tp = 10 s, 30 components, one seed per ship).
 
 For N = 1, 16 and 64 ships, two batches are built with
-:func:`ship_gym.dynamics.batch.build_batch_simulator`: ``control="batch"`` (the vectorised
-models of :mod:`ship_gym.dynamics.batch_control`) and ``control="per_ship"``
-(:class:`~ship_gym.dynamics.batch.PerShipForceModel`: one single-ship model per ship, looped in
+:func:`ship_gym.engine.batch.build_batch_simulator`: ``control="batch"`` (the vectorised
+models of :mod:`ship_gym.engine.batch_control`) and ``control="per_ship"``
+(:class:`~ship_gym.engine.batch.PerShipForceModel`: one single-ship model per ship, looped in
 Python). After a few steps (actuators moving), printed and written with ``--json PATH``:
 
 * the **process time** (``time.process_time``, CPU seconds of this process: less sensitive to
@@ -41,8 +41,8 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from ship_gym.dynamics.batch import BatchSimulator, build_batch_simulator  # noqa: E402
-from ship_gym.dynamics.ship import ShipSetup, wave_field_for  # noqa: E402
+from ship_gym.engine.batch import BatchSimulator, build_batch_simulator  # noqa: E402
+from ship_gym.engine.ship import ShipSetup, wave_field_for  # noqa: E402
 from ship_gym.io_utils import atomic_write_text  # noqa: E402
 from ship_gym.waves.sea_state import IrregularSea  # noqa: E402
 

@@ -78,14 +78,44 @@ def bench_single(env_id: str, steps: int, seed: int = 0) -> tuple[float, float]:
     return n / wall, n / max(cpu, 1e-12)
 
 
+def bench_engine(env_id: str, steps: int, seed: int = 0) -> float | None:
+    """Engine-only rate [control steps/s] of a ship env's physics: its engine's
+    ``advance(substeps)`` with the env's commands held, on the env's own simulator after a
+    reset (None for an env without a 6-DOF engine)."""
+    env = gymnasium.make(f"ship_gym:{env_id}")
+    env.reset(seed=seed)
+    task = getattr(env.unwrapped, "task", None)
+    if task is None or not hasattr(task, "sim"):
+        env.close()
+        return None
+    sim = task.sim
+    for _ in range(WARMUP_STEPS):
+        sim.advance(task.substeps, task.commands, danger_roll=task.dangerous_roll)
+
+    def run() -> int:
+        for _ in range(steps):
+            sim.advance(task.substeps, task.commands, danger_roll=task.dangerous_roll)
+        return steps
+
+    wall, _, n = _timed(run)
+    env.close()
+    return n / wall
+
+
 def bench_vector(
-    env_id: str, num_envs: int, mode: str, steps: int, seed: int = 0
+    env_id: str, num_envs: int, mode: str, steps: int, seed: int = 0, threads: int = 1
 ) -> tuple[float, float]:
     """(env steps/s wall, env steps/s CPU) of ``make_vec(env_id, num_envs, mode)``.
 
     ``steps`` is the env-step budget: ``max(steps // num_envs, 10)`` vector steps are timed.
+    ``threads`` > 1 passes ``num_threads`` to a ship env's batched vector env.
     """
-    env = gymnasium.make_vec(f"ship_gym:{env_id}", num_envs=num_envs, vectorization_mode=mode)
+    kwargs: dict[str, Any] = {}
+    if threads > 1 and mode == "vector_entry_point" and "RollOneDOF" not in env_id:
+        kwargs["num_threads"] = threads
+    env = gymnasium.make_vec(
+        f"ship_gym:{env_id}", num_envs=num_envs, vectorization_mode=mode, **kwargs
+    )
     vector_steps = max(steps // num_envs, 10)
     rng = np.random.default_rng(seed)
     shape = env.action_space.shape
@@ -111,6 +141,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--n", nargs="*", type=int, default=[1, 16, 64], help="vector sizes N")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--json", default=None, help="write the numbers to this JSON file")
+    parser.add_argument(
+        "--threads", type=int, default=1, help="numba threads of the batched ship envs"
+    )
+    parser.add_argument("--no-sync", action="store_true", help="skip SyncVectorEnv")
     args = parser.parse_args(argv)
     if args.steps < 1 or any(n < 1 for n in args.n):
         parser.error("--steps and every --n must be positive")
@@ -123,16 +157,23 @@ def main(argv: Sequence[str] | None = None) -> int:
     sync: dict[str, dict[str, float]] = {}
     cpu: dict[str, Any] = {"single": {}, "vector": {}, "sync": {}}
     failed: dict[str, str] = {}
+    engine: dict[str, float] = {}
     for env_id in args.ids:
         try:
+            rate = bench_engine(env_id, args.steps, args.seed)
+            if rate is not None:
+                engine[env_id] = rate
             single[env_id], cpu["single"][env_id] = bench_single(env_id, args.steps, args.seed)
             vector[env_id], sync[env_id] = {}, {}
             cpu["vector"][env_id], cpu["sync"][env_id] = {}, {}
             for n in args.n:
                 key = str(n)
                 vector[env_id][key], cpu["vector"][env_id][key] = bench_vector(
-                    env_id, n, "vector_entry_point", args.steps, args.seed
+                    env_id, n, "vector_entry_point", args.steps, args.seed, args.threads
                 )
+                if args.no_sync:
+                    sync[env_id][key], cpu["sync"][env_id][key] = float("nan"), float("nan")
+                    continue
                 sync[env_id][key], cpu["sync"][env_id][key] = bench_vector(
                     env_id, n, "sync", args.steps, args.seed
                 )
@@ -159,12 +200,21 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(row)
     for env_id, why in failed.items():
         print(f"{env_id:34s} unavailable: {why}")
+    if engine:
+        print("\nsingle env vs its engine alone (advance(substeps) with the commands held):")
+        for env_id, rate in engine.items():
+            if env_id in single:
+                print(
+                    f"{env_id:34s} engine {rate:8.0f} steps/s, env {single[env_id]:8.0f} steps/s: "
+                    f"env step = {rate / single[env_id]:.2f} × the engine's cost"
+                )
 
     if args.json:
         payload: dict[str, Any] = dict(single)
         payload.update(
             {
                 "single": single,
+                "engine_steps_per_s": engine,
                 "vector_steps_per_s": vector,
                 "sync_vector_steps_per_s": sync,
                 "cpu_time_steps_per_s": cpu,
@@ -177,6 +227,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                     "platform": platform.platform(),
                     "python": platform.python_version(),
                     "numba_num_threads": os.environ.get("NUMBA_NUM_THREADS"),
+                    "threads": args.threads,
                     "actions": "uniform random in [-1, 1]",
                 },
             }

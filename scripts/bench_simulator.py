@@ -6,7 +6,7 @@ at zero speed in head seas (β = 180°), JONSWAP Hs = 5 m, Tp = 11 s, γ = 3.3, 
 (seed 0), radiation memory on, diffraction and Ikeda roll damping on, dt = 0.05 s. Timed in
 the same run:
 
-* **fast path**: :class:`ship_gym.dynamics.compiled_step.CompiledShip` (K steps per compiled
+* **fast path**: :class:`ship_gym.engine.compiled_step.CompiledShip` (K steps per compiled
   call; Holloway's μ-Taylor scheme, 1 force evaluation per step; state-space memory; the
   Froude–Krylov kernel with float32 wave sums) on the 1500-face mesh (``MESH_1500``); also
   with float64 wave sums and on the default 2400-face mesh;
@@ -33,7 +33,7 @@ the full sea. Printed (and written with ``--json PATH``; the headline keys
   free decays, against 2400 and 9600 faces;
 * the Simulator tables (RK4/Holloway real-time factors, per-model cost split, memory vs 2b,
   integrator accuracy against RK4 at dt/2);
-* throughput (ship-steps/s) of :class:`ship_gym.dynamics.batch.BatchSimulator` for 1, 16 and 64
+* throughput (ship-steps/s) of :class:`ship_gym.engine.batch.BatchSimulator` for 1, 16 and 64
   ships, of independent :class:`Simulator` objects, and, with the fast path's settings, of
   BatchSimulator and of N CompiledShips stepped in turn.
 
@@ -67,10 +67,10 @@ from pathlib import Path  # noqa: E402
 import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ship_gym.dynamics.batch import BatchSimulator, build_batch_simulator  # noqa: E402
-from ship_gym.dynamics.compiled_step import CompiledShip, build_compiled_ship  # noqa: E402
-from ship_gym.dynamics.ship import ShipSetup, build_simulator, wave_field_for  # noqa: E402
-from ship_gym.dynamics.simulator import Simulator  # noqa: E402
+from ship_gym.engine.batch import BatchSimulator, build_batch_simulator  # noqa: E402
+from ship_gym.engine.compiled_step import CompiledShip, build_compiled_ship  # noqa: E402
+from ship_gym.engine.ship import ShipSetup, build_simulator, wave_field_for  # noqa: E402
+from ship_gym.engine.simulator import Simulator  # noqa: E402
 from ship_gym.forces.froude_krylov import _fk_one_ship, _fk_one_ship_f32  # noqa: E402
 from ship_gym.hull import load_hull, righting_arm  # noqa: E402
 from ship_gym.io_utils import atomic_write_text  # noqa: E402

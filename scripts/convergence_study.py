@@ -22,7 +22,7 @@ Method
 ------
 The S175 (bundled hull and BEM database, zero speed, surge/sway/yaw held, heave/roll/pitch
 free, state-space radiation, diffraction, Ikeda viscous roll damping, nonlinear Froude–Krylov +
-hydrostatics on the instantaneous wetted hull; :func:`ship_gym.dynamics.ship.build_simulator`)
+hydrostatics on the instantaneous wetted hull; :func:`ship_gym.engine.ship.build_simulator`)
 is simulated in two seas, each with the default 50 s start-up ramp (Matusiak eq. 12):
 
 * ``irregular``: long-crested JONSWAP Hs = 5 m, Tp = 11 s, γ = 3.3, 50 components, relative
@@ -59,7 +59,7 @@ eq. 10, 1) — is run at Δt ∈ {0.4, 0.2, 0.1, 0.05, 0.025} s and compared wit
 over the whole record, reported for heave, roll and pitch and as their maximum; the observed
 order between successive steps is log₂(e(Δt)/e(Δt/2)). Cost is the number of force evaluations
 per simulated second (start-up included) and the wall time of the run (build excluded). A run
-that raises :class:`~ship_gym.dynamics.simulator.SimulationDiverged` is reported as diverged.
+that raises :class:`~ship_gym.engine.simulator.SimulationDiverged` is reported as diverged.
 
 Outputs: a figure (default ``out/convergence.png``: error against Δt and against evaluations per
 simulated second, per sea and scheme), a printed table, and with ``--json PATH`` the numbers
@@ -88,8 +88,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ship_gym.dynamics.ship import ShipSetup, build_simulator
-from ship_gym.dynamics.simulator import SimulationDiverged, Simulator
+from ship_gym.engine.ship import ShipSetup, build_simulator
+from ship_gym.engine.simulator import SimulationDiverged, Simulator
 from ship_gym.forces.diffraction import Diffraction
 from ship_gym.hydro import load_database
 from ship_gym.waves.sea_state import IrregularSea, RegularWave

@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from ship_gym.analysis import manoeuvres as man
-from ship_gym.dynamics.ship import build_simulator
+from ship_gym.engine.ship import build_simulator
 from ship_gym.hull import load_hull
 from ship_gym.io_utils import atomic_write_text
 

@@ -55,7 +55,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ship_gym.analysis import identification as ident
-from ship_gym.dynamics.roll_equation import RollEquation
+from ship_gym.engine.roll_equation import RollEquation
 from ship_gym.io_utils import atomic_write, atomic_write_text
 
 if TYPE_CHECKING:
@@ -417,7 +417,7 @@ def simulate_s175(progress: bool) -> tuple[ident.RollRecord, dict, object, np.nd
     """Beam-sea roll record of the 6-DOF S175 with the wave elevation at the origin; also the
     simulator's wave field and the record's times on the wave field's clock [s] (the meta data
     hold the ship's fixed horizontal position [m] and heading [rad])."""
-    from ship_gym.dynamics.ship import ShipSetup, build_simulator
+    from ship_gym.engine.ship import ShipSetup, build_simulator
     from ship_gym.waves.sea_state import IrregularSea
 
     setup = ShipSetup(

@@ -49,7 +49,7 @@ Wave groups: the ship's speed follows the local wave energy (surge time constant
 means over a few hundred seconds scatter by several per cent between windows; the default runs
 are 2400 s long.
 
-The simulator is built from :func:`ship_gym.dynamics.ship.build_force_models` plus the model
+The simulator is built from :func:`ship_gym.engine.ship.build_force_models` plus the model
 (ShipSetup has no switch for it yet).
 
 Usage::
@@ -80,11 +80,12 @@ from scipy.optimize import brentq  # noqa: E402
 from scipy.signal import welch  # noqa: E402
 
 from ship_gym.control.actuators import FIN_SERVO  # noqa: E402
-from ship_gym.dynamics.ship import (  # noqa: E402
+from ship_gym.control.stabilisers import fin_law  # noqa: E402
+from ship_gym.engine.ship import (  # noqa: E402
     ShipSetup,
     build_simulator,
 )
-from ship_gym.dynamics.simulator import Simulator  # noqa: E402
+from ship_gym.engine.simulator import Simulator  # noqa: E402
 from ship_gym.forces.added_resistance import AddedResistance  # noqa: E402
 from ship_gym.forces.base import ForceContext  # noqa: E402
 from ship_gym.hull import load_hull  # noqa: E402
@@ -118,12 +119,6 @@ def build(
     return sim, raw
 
 
-def _state_offset(sim: Simulator, name: str) -> int:
-    names = [f.name for f in sim.forces]
-    idx = names.index(name)
-    return int(sum(f.n_states for f in sim.forces[:idx]))
-
-
 # ---------------------------------------------------------------------------------- part 1
 def roll_run(fins: str, duration: float, sea: IrregularSea) -> dict:
     """One beam-sea run; time series and fin quantities."""
@@ -140,7 +135,6 @@ def roll_run(fins: str, duration: float, sea: IrregularSea) -> dict:
     fin = None
     if fins != "none":
         fin = sim.forces[[f.name for f in sim.forces].index("roll_fins")]
-        off = _state_offset(sim, "roll_fins")
     t = np.empty(n + 1)
     eta = np.empty((n + 1, 6))
     nu = np.empty((n + 1, 6))
@@ -154,7 +148,7 @@ def roll_run(fins: str, duration: float, sea: IrregularSea) -> dict:
             sim.step()
         t[i], eta[i], nu[i] = sim.t, sim.eta, sim.nu
         if fin is not None:
-            angle = float(sim.z[off])
+            angle = fin.angle
             applied = float(FIN_SERVO.applied(angle))
             ctx = ForceContext(
                 t=sim.t,
@@ -164,11 +158,13 @@ def roll_run(fins: str, duration: float, sea: IrregularSea) -> dict:
                 forward_speed=sim.forward_speed,
                 commands={"fins": applied},
             )
-            command[i] = fin.controller.command(ctx, sim.z[off + 1 : off + fin.n_states], {})
+            command[i], _ = fin_law(
+                fin.gains, sim.eta, sim.nu, float(fin.states.integral[0]), FIN_SERVO.max_angle
+            )
             delta[i] = applied
             moment[i] = fin.model.evaluate(ctx, np.zeros(0))[0][3]
-            rate = float(FIN_SERVO.rate(angle, command[i]))
-            rate_limited[i] = abs(rate) >= 0.999 * FIN_SERVO.max_rate
+            target = float(FIN_SERVO.applied(command[i]))
+            rate_limited[i] = abs(target - angle) > FIN_SERVO.max_rate * FIN_SERVO.lag
     wall = time.perf_counter() - t0
     return {
         "t": t,
@@ -340,7 +336,7 @@ def regular_wave_added_resistance(lambdas: list[float], height: float = 2.0) -> 
     Coriolis) over whole encounter periods after 100 s, minus its calm-water value, is the
     mean added resistance of the nonlinear Froude–Krylov + linear radiation/diffraction model.
     """
-    from ship_gym.dynamics.ship import build_simulator
+    from ship_gym.engine.ship import build_simulator
     from ship_gym.forces.added_resistance import SNNMParticulars, added_resistance_coefficient
     from ship_gym.waves.sea_state import RegularWave
 

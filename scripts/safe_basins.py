@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from ship_gym.analysis import safe_basin as sb
-from ship_gym.dynamics.roll_equation import RollEquation
+from ship_gym.engine.roll_equation import RollEquation
 from ship_gym.io_utils import atomic_write_text
 
 

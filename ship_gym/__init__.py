@@ -1,6 +1,6 @@
 """ship_gym — Gymnasium environments for ship seakeeping on a two-stage 6-DOF ship model.
 
-Importing the package registers the environment ids (``ship_gym/<Name>-v0``) with Gymnasium;
+Importing the package registers the environment ids (``ship_gym/<Name>-vN``) with Gymnasium;
 the environment modules and the simulator are imported only when an environment is made.
 """
 

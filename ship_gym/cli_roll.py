@@ -66,7 +66,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
 
 def _cmd_safe_basin(args: argparse.Namespace) -> int:
     from ship_gym.analysis import safe_basin as sb
-    from ship_gym.dynamics.roll_equation import RollEquation
+    from ship_gym.engine.roll_equation import RollEquation
 
     progress = not args.no_progress
     separatrix = None

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from ship_gym.dynamics.simulator import SimulationResult
+    from ship_gym.engine.simulator import SimulationResult
 
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
@@ -61,7 +61,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
     from ship_gym.conventions import DOF_NAMES, dof_index
-    from ship_gym.dynamics.ship import ShipSetup, build_simulator
+    from ship_gym.engine.ship import ShipSetup, build_simulator
     from ship_gym.io_utils import atomic_write
     from ship_gym.waves.sea_state import IrregularSea, RegularWave
 

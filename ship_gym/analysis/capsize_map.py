@@ -1,8 +1,8 @@
 """Capsize-risk maps: heading × Froude number (× sea state × seeds) under the heading autopilot.
 
 Each *cell* of the map is one run of the 6-DOF two-stage simulator
-(:func:`ship_gym.dynamics.ship.build_simulator`; the roll natural frequency of the damping
-follows the loading condition, :func:`ship_gym.dynamics.ship.roll_natural_frequency`): the ship
+(:func:`ship_gym.engine.ship.build_simulator`; the roll natural frequency of the damping
+follows the loading condition, :func:`ship_gym.engine.ship.roll_natural_frequency`): the ship
 starts at the free-floating equilibrium heading north at U = Fn √(g L), keeps its heading with
 the PID autopilot (``ShipSetup(rudder="autopilot", manoeuvring=True, propulsion=True)``, command
 ``"heading"`` = 0) and the propeller at the calm-water self-propulsion rpm, while the waves travel
@@ -13,7 +13,7 @@ Capsize is declared, and the run stopped, when
 
 * ``"roll"``: |φ| exceeds the capsize angle — by default the angle of vanishing stability of the
   loading condition (:func:`ship_gym.hull.righting_arm`, calm water, free sinkage and trim), or
-* ``"diverged"``: the simulator raises :class:`~ship_gym.dynamics.simulator.SimulationDiverged`
+* ``"diverged"``: the simulator raises :class:`~ship_gym.engine.simulator.SimulationDiverged`
   (a state that no longer makes sense, e.g. the hull flying out of the water).
 
 Per cell: capsize yes/no, the reason, the time to capsize [s], max |φ| and RMS φ after the ramp
@@ -47,11 +47,12 @@ from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
+from ship_gym.typing import IntegratorName
 from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
 if TYPE_CHECKING:
-    from ship_gym.dynamics.ship import ShipSetup
-    from ship_gym.dynamics.simulator import Simulator
+    from ship_gym.engine.ship import ShipSetup
+    from ship_gym.engine.simulator import Simulator
 
 __all__ = [
     "FORMAT_VERSION",
@@ -216,7 +217,7 @@ class CapsizeMapConfig:
     seeds: tuple[int, ...] = (0,)
     duration: float = 720.0
     dt: float = 0.1
-    integrator: Literal["rk4", "abm", "holloway"] = "rk4"
+    integrator: IntegratorName = "rk4"
     radiation: Literal["state_space", "convolution", "2a", "2b", "none"] = "state_space"
     capsize_angle_deg: float | None = None
     record_every: int = 5
@@ -401,7 +402,7 @@ def simulate_until_capsize(
         rec_nu.append(sim.nu.copy())
         rec_rudder.append(rudder())
 
-    from ship_gym.dynamics.simulator import SimulationDiverged
+    from ship_gym.engine.simulator import SimulationDiverged
 
     steps: Iterable[int] = range(n)
     if progress:
@@ -453,12 +454,11 @@ def _rudder_probe(sim: Simulator) -> Callable[[], float]:
     """A callable returning the applied rudder angle [rad] (NaN when there is no rudder)."""
     from ship_gym.control.actuators import Actuated
 
-    for i, f in enumerate(sim.forces):
+    for f in sim.forces:
         if isinstance(f, Actuated) and f.key == "rudder":
-            sl = sim._slices[i]
 
-            def angle(f: Actuated = f, sl: slice = sl) -> float:
-                return float(f.servo.applied(float(sim.z[sl][0])))
+            def angle(f: Actuated = f) -> float:
+                return float(f.servo.applied(f.angle))
 
             return angle
     return lambda: math.nan
@@ -484,13 +484,13 @@ def autopilot_setup(
     speed : float
         Speed U [m/s] (the self-propulsion rpm is set for it).
     radiation, integrator : str
-        Radiation model and time integrator (:class:`~ship_gym.dynamics.ship.ShipSetup`).
+        Radiation model and time integrator (:class:`~ship_gym.engine.ship.ShipSetup`).
     dt : float
         Physics step [s].
     database : str
         Hydrodynamic database name or path.
     """
-    from ship_gym.dynamics.ship import ShipSetup
+    from ship_gym.engine.ship import ShipSetup
 
     return ShipSetup(
         hull=hull,
@@ -544,7 +544,7 @@ def run_cell(config: CapsizeMapConfig, cell: Cell, capsize_angle_deg: float) -> 
     capsize_angle_deg : float
         |φ| counted as capsize [deg].
     """
-    from ship_gym.dynamics.ship import build_simulator
+    from ship_gym.engine.ship import build_simulator
 
     t0 = time.process_time()
     setup, sea, beta, rng = cell_setup(config, cell)

@@ -102,7 +102,7 @@ def mathieu_growth(h: float, zeta: float, omega_e: float, omega_roll: float) -> 
 
 
 def _fk_simulator(hull, wave_field):
-    from ship_gym.dynamics.simulator import Simulator
+    from ship_gym.engine.simulator import Simulator
     from ship_gym.forces.froude_krylov import FroudeKrylovHydrostatics
 
     fk = FroudeKrylovHydrostatics(hull, wave_field)
@@ -282,7 +282,7 @@ def parametric_roll_check(
     damping_amplitude_deg : float
         Roll amplitude of the equivalent linear viscous damping [deg].
     """
-    from ship_gym.dynamics.ship import roll_natural_frequency
+    from ship_gym.engine.ship import roll_natural_frequency
     from ship_gym.hull import equilibrium, hydrostatics, load_hull
     from ship_gym.hydro import load_database
     from ship_gym.kinematics import encounter_frequency
@@ -450,7 +450,7 @@ def simulate_parametric_roll(
     import dataclasses
 
     from ship_gym.analysis.capsize_map import capsize_angle_of, simulate_until_capsize
-    from ship_gym.dynamics.ship import ShipSetup, build_simulator
+    from ship_gym.engine.ship import ShipSetup, build_simulator
     from ship_gym.waves.sea_state import RegularWave
 
     setup = ShipSetup(
@@ -572,7 +572,7 @@ class DeadShipResult:
 
 def _dead_ship_seed(hull, overrides, hs, tp, seed, duration, dt, angle, hold_yaw) -> dict:
     from ship_gym.analysis.capsize_map import simulate_until_capsize, single_threaded_blas
-    from ship_gym.dynamics.ship import ShipSetup, build_simulator
+    from ship_gym.engine.ship import ShipSetup, build_simulator
     from ship_gym.waves.sea_state import IrregularSea
 
     with single_threaded_blas():

@@ -1,7 +1,7 @@
 """Standard manoeuvring trials in calm water and the IMO standards for manoeuvrability.
 
 Full-scale trials of IMO Resolution MSC.137(76) (2002), run on the assembled 6-DOF simulator
-(:func:`ship_gym.dynamics.ship.build_simulator`: nonlinear Froude–Krylov + hydrostatics, Cummins
+(:func:`ship_gym.engine.ship.build_simulator`: nonlinear Froude–Krylov + hydrostatics, Cummins
 radiation memory, Ikeda roll damping, Holtrop–Mennen resistance, B-series propeller, Clarke hull
 derivatives with cross-flow drag, rudder behind its servo), all six DOFs free:
 
@@ -68,14 +68,14 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ship_gym.conventions import wrap_angle
-from ship_gym.dynamics.ship import ShipSetup, build_simulator, propeller_of, trim_shaft_speed
+from ship_gym.engine.ship import ShipSetup, build_simulator, propeller_of, trim_shaft_speed
 from ship_gym.forces.propeller import Propeller, service_speed
 from ship_gym.hull import load_hull
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from ship_gym.dynamics.simulator import Simulator
+    from ship_gym.engine.simulator import Simulator
 
 __all__ = [
     "Criterion",
@@ -164,14 +164,10 @@ def _check_setup(setup: ShipSetup, rudder: str | None = "command") -> None:
         raise ValueError(f"this trial needs rudder={rudder!r}, got {setup.rudder!r}")
 
 
-def _state_offset(sim: Simulator, name: str) -> int:
-    """Index in ``sim.z`` of the first state of force model ``name`` (the servo angle)."""
-    offset = 0
-    for f in sim.forces:
-        if f.name == name:
-            return offset
-        offset += int(f.n_states)
-    raise ValueError(f"the simulator has no force model named {name!r}")
+def _has_actuator(sim: Simulator, name: str) -> str:
+    """``name`` if the simulator has a servo-driven force model of that name (else ValueError)."""
+    sim.actuator_angle(name)
+    return name
 
 
 def _prepare(
@@ -191,9 +187,9 @@ def _prepare(
 class _Recorder:
     """Per-step record of a trial: time, position, attitude, velocities, rudder, order."""
 
-    def __init__(self, sim: Simulator, rudder_offset: int | None) -> None:
+    def __init__(self, sim: Simulator, rudder: str | None) -> None:
         self.sim = sim
-        self.offset = rudder_offset
+        self.rudder = rudder
         self.t0 = sim.t
         self.x0, self.y0 = float(sim.eta[0]), float(sim.eta[1])
         self.psi0 = float(sim.eta[5])
@@ -210,7 +206,7 @@ class _Recorder:
         s = self.sim
         self._psi += float(wrap_angle(s.eta[5] - self._last))
         self._last = float(s.eta[5])
-        delta = float(s.z[self.offset]) if self.offset is not None else 0.0
+        delta = s.actuator_angle(self.rudder) if self.rudder is not None else 0.0
         self.rows.append(
             (
                 s.t - self.t0,
@@ -659,7 +655,7 @@ def turning_circle(
     sim = _prepare(setup, settle=settle, trim_approach=trim_approach)
     side = math.copysign(1.0, rudder_deg)
     order = math.radians(rudder_deg)
-    rec = _Recorder(sim, _state_offset(sim, "rudder"))
+    rec = _Recorder(sim, _has_actuator(sim, "rudder"))
     u0 = float(math.hypot(sim.nu[0], sim.nu[1]))
     rec.record(order)
     bar = _progress(max_time, f"turning {rudder_deg:g}°", progress)
@@ -748,7 +744,7 @@ def zigzag(
     side = math.copysign(1.0, rudder_deg)
     delta = math.radians(abs(rudder_deg))
     check = math.radians(switch)
-    rec = _Recorder(sim, _state_offset(sim, "rudder"))
+    rec = _Recorder(sim, _has_actuator(sim, "rudder"))
     u0 = float(math.hypot(sim.nu[0], sim.nu[1]))
     direction = 1.0  # +1: rudder towards the first side
     rec.record(side * direction * delta)
@@ -967,7 +963,7 @@ def autopilot_step(
     sim = _prepare(setup, settle=0.0, trim_approach=trim_approach, rudder="autopilot")
     k_nom, t_nom = nomoto_of(sim)
     psi0 = float(sim.eta[5])
-    offset = _state_offset(sim, "rudder")
+    _has_actuator(sim, "rudder")
     dev = 0.0
     total = hold + duration
     bar = _progress(total, "autopilot", progress)
@@ -979,12 +975,12 @@ def autopilot_step(
     ref = psi0 + math.radians(step_deg)
     sim.commands = {**sim.commands, "heading": ref}
     t0 = sim.t
-    ts, psis, deltas = [0.0], [float(sim.eta[5])], [float(sim.z[offset])]
+    ts, psis, deltas = [0.0], [float(sim.eta[5])], [sim.actuator_angle("rudder")]
     for _ in range(round(duration / sim.dt)):
         sim.step()
         ts.append(sim.t - t0)
         psis.append(float(sim.eta[5]))
-        deltas.append(float(sim.z[offset]))
+        deltas.append(sim.actuator_angle("rudder"))
         if bar is not None:
             bar.update(round(sim.t) - bar.n)
     if bar is not None:
@@ -1020,11 +1016,11 @@ def autopilot_step(
 
 def nomoto_of(sim: Simulator) -> tuple[float, float]:
     """Nomoto K [1/s], T [s] of the assembled ship at its speed, identified as
-    :func:`~ship_gym.dynamics.ship.build_simulator` does for the autopilot
-    (:func:`~ship_gym.dynamics.linearization.nomoto_from_models` on the resistance, propeller,
+    :func:`~ship_gym.engine.ship.build_simulator` does for the autopilot
+    (:func:`~ship_gym.engine.linearization.nomoto_from_models` on the resistance, propeller,
     hull manoeuvring and rudder models at the current commands)."""
     from ship_gym.control.actuators import Actuated
-    from ship_gym.dynamics.linearization import nomoto_from_models
+    from ship_gym.engine.linearization import nomoto_from_models
     from ship_gym.forces.manoeuvring import HullManoeuvring
     from ship_gym.forces.resistance import CalmWaterResistance
 

@@ -13,7 +13,7 @@ length: λ = 1.5 L = 262.5 m and A_w = 4.5 m × 175/150 = 5.25 m (H = 10.5 m, H/
 same steepness as his 9 m / 225 m). Froude number and heading are his. Our setup, as far as the
 paper describes one (it gives no autopilot gains or propeller data):
 
-* the two-stage simulator (:func:`ship_gym.dynamics.ship.build_simulator`):
+* the two-stage simulator (:func:`ship_gym.engine.ship.build_simulator`):
   nonlinear Froude–Krylov + hydrostatics on the instantaneous wetted hull, linear diffraction
   at the encounter frequency, Ikeda viscous roll damping, Holtrop resistance + B-series
   propeller at the calm-water self-propulsion rpm (held constant), hull manoeuvring forces and
@@ -192,7 +192,7 @@ class Scenario:
         return RegularWave(height=2.0 * amplitude, wavelength=wavelength, ramp_time=self.ramp_time)
 
     def setup(self, length: float | None = None):
-        """The :class:`~ship_gym.dynamics.ship.ShipSetup` of the run (self-propelled, under the
+        """The :class:`~ship_gym.engine.ship.ShipSetup` of the run (self-propelled, under the
         heading autopilot: :func:`ship_gym.analysis.capsize_map.autopilot_setup`)."""
         from ship_gym.analysis.capsize_map import autopilot_setup
 
@@ -208,7 +208,7 @@ class Scenario:
 
     def build(self):
         """A simulator at the start of the run (heading north, waves to β)."""
-        from ship_gym.dynamics.ship import build_simulator
+        from ship_gym.engine.ship import build_simulator
 
         length = self.length()
         return build_simulator(
@@ -347,7 +347,7 @@ def run_scenario(scenario: Scenario, *, record_every: int = 5, progress: bool = 
     ScenarioResult
     """
     from ship_gym.analysis.capsize_map import capsize_angle_of, simulate_until_capsize
-    from ship_gym.dynamics.ship import roll_natural_frequency
+    from ship_gym.engine.ship import roll_natural_frequency
     from ship_gym.hull import equilibrium, hydrostatics, load_hull
     from ship_gym.hydro import load_database
     from ship_gym.kinematics import encounter_frequency

@@ -5,14 +5,14 @@ within a given time: a grid of initial roll [rad] and roll rate [rad/s] is integ
 is *capsized* when |φ| exceeds the capsize angle (by default the vanishing angle of the restoring)
 at any time step (McCue & Campbell, figure 8: "Safe basin ... grid of initial conditions").
 
-* :func:`safe_basin` — a 1-DOF :class:`~ship_gym.dynamics.roll_equation.RollEquation` (e.g. the
+* :func:`safe_basin` — a 1-DOF :class:`~ship_gym.engine.roll_equation.RollEquation` (e.g. the
   Edith Terkol, McCue & Campbell eq. 1, or a fitted eq. 2 model): the whole grid is one batch of
   the compiled RK4 kernel (in chunks of rows, for the progress bar).
 * :func:`s175_safe_basin` — the same through the 6-DOF simulator, a 1-DOF slice of a real hull:
   the S175 with only roll free (``ShipSetup(free_dofs=(False, False, False, True, False,
   False))``: nonlinear Froude–Krylov/hydrostatic restoring on the instantaneous wetted hull,
   Cummins radiation memory, diffraction, Ikeda viscous roll damping), in calm water or regular
-  beam waves, the grid being ONE :class:`~ship_gym.dynamics.batch.BatchSimulator` of N = grid
+  beam waves, the grid being ONE :class:`~ship_gym.engine.batch.BatchSimulator` of N = grid
   size ships, each reset with its own initial roll and roll rate. Heave and pitch are held at
   the upright free-floating equilibrium, so the restoring at large heel is that of the upright
   sinkage and trim, while the capsize angle is, by default, the vanishing angle of the GZ curve
@@ -42,8 +42,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ship_gym.dynamics.roll_equation import RollEquation
+from ship_gym.engine.roll_equation import RollEquation
 from ship_gym.io_utils import atomic_write, atomic_write_text
+from ship_gym.typing import FloatArray
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -60,8 +61,6 @@ __all__ = [
     "write_basin",
     "write_integrity_csv",
 ]
-
-FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
@@ -406,8 +405,8 @@ def s175_safe_basin(
     -------
     SafeBasin
     """
-    from ship_gym.dynamics.batch import build_batch_simulator
-    from ship_gym.dynamics.ship import ShipSetup, wave_field_for
+    from ship_gym.engine.batch import build_batch_simulator
+    from ship_gym.engine.ship import ShipSetup, wave_field_for
     from ship_gym.hull import load_hull, righting_arm
     from ship_gym.waves.sea_state import RegularWave
 

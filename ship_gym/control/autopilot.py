@@ -20,12 +20,14 @@ integral is driven back at rate (δ_applied − δ_c)/(K_i T_t) so it does not w
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import ClassVar
 
+import numba as nb
 import numpy as np
 
-from ship_gym.conventions import wrap_angle
-from ship_gym.forces.base import ForceContext
+from ship_gym.typing import FloatArray
 
 
 @dataclass(frozen=True)
@@ -106,7 +108,8 @@ class HeadingAutopilot:
     tracking_time: float = 10.0
     heading_key: str = "heading"
 
-    n_states = 1
+    kind: ClassVar[int] = 1
+    """Law index of :func:`ship_gym.control.actuators.control_law`."""
 
     def __post_init__(self) -> None:
         for name in ("kp", "kd", "ki"):
@@ -136,29 +139,40 @@ class HeadingAutopilot:
         kd = max((2.0 * damping * natural_frequency * t - 1.0) / k, 0.0)
         return cls(kp=kp, kd=kd, ki=kp * natural_frequency / 10.0)
 
-    def reference(self, ctx: ForceContext, initial: dict) -> float:
-        """Heading set-point ψ_ref [rad]: the command, or the heading at reset."""
-        return float(ctx.commands.get(self.heading_key, initial.get("heading", 0.0)))
+    def gains(self) -> FloatArray:
+        """(K_p, K_d, K_i, T_t): the parameters of :func:`heading_autopilot_law`."""
+        return np.array([self.kp, self.kd, self.ki, self.tracking_time], dtype=float)
 
-    def initial(self, ctx: ForceContext) -> dict:
-        """What the controller remembers at reset (the initial heading)."""
-        return {"heading": float(ctx.eta[5])}
 
-    def command(self, ctx: ForceContext, states: np.ndarray, initial: dict) -> float:
-        """Commanded rudder δ_c [rad] (before saturation)."""
-        e = float(wrap_angle(self.reference(ctx, initial) - ctx.eta[5]))
-        return self.kp * e - self.kd * float(ctx.nu[5]) + self.ki * float(states[0])
+@nb.njit(cache=True, nogil=True)
+def heading_autopilot_law(gains, eta, nu, integral, reference, limit):  # pragma: no cover
+    """PID on the heading error with back-calculation anti-windup.
 
-    def state_rates(
-        self,
-        ctx: ForceContext,
-        states: np.ndarray,
-        initial: dict,
-        command: float,
-        achievable: float,
-    ) -> np.ndarray:
-        """d/dt ∫e with back-calculation: e + (δ_achievable − δ_c)/(K_i T_t)."""
-        if self.ki == 0.0:
-            return np.zeros(1)
-        e = float(wrap_angle(self.reference(ctx, initial) - ctx.eta[5]))
-        return np.array([e + (achievable - command) / (self.ki * self.tracking_time)])
+    δ_c = K_p e − K_d r + K_i ∫e with e = wrap(ψ_ref − ψ), and
+    d/dt ∫e = e + (sat(δ_c) − δ_c)/(K_i T_t) (0 when K_i = 0).
+
+    Parameters
+    ----------
+    gains : numpy.ndarray
+        (K_p [-], K_d [s], K_i [1/s], T_t [s]) (:meth:`HeadingAutopilot.gains`).
+    eta, nu : numpy.ndarray
+        (6,) state sampled at the step start.
+    integral : float
+        ∫e [rad·s].
+    reference : float
+        ψ_ref [rad].
+    limit : float
+        Saturation of the command δ_max [rad].
+
+    Returns
+    -------
+    (float, float)
+        δ_c [rad] before saturation and d/dt ∫e [rad].
+    """
+    kp, kd, ki, tracking = gains[0], gains[1], gains[2], gains[3]
+    e = (reference - eta[5] + math.pi) % (2.0 * math.pi) - math.pi
+    command = kp * e - kd * nu[5] + ki * integral
+    if ki == 0.0:
+        return command, 0.0
+    achievable = min(max(command, -limit), limit)
+    return command, e + (achievable - command) / (ki * tracking)

@@ -21,11 +21,14 @@ with k_w = 2 ζ_w √(C₃₃ (m + A₃₃)) / |∂F_z/∂δ| and k_q = 2 ζ_q �
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
+import numba as nb
 import numpy as np
 
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.kinematics import rotation_matrix
+from ship_gym.typing import FloatArray
 
 
 def control_derivative(model: ForceModel, key: str, dof: int, speed: float) -> float:
@@ -67,7 +70,8 @@ class FinController:
     k_rate: float
     k_integral: float = 0.0
 
-    n_states = 1
+    kind: ClassVar[int] = 2
+    """Law index of :func:`ship_gym.control.actuators.control_law`."""
 
     @classmethod
     def tuned(
@@ -99,24 +103,18 @@ class FinController:
         k_rate = 2.0 * added_damping * np.sqrt(c44 * i44_total) / fin_moment_per_rad
         return cls(k_roll=added_stiffness * c44 / fin_moment_per_rad, k_rate=k_rate)
 
-    def initial(self, ctx: ForceContext) -> dict:
-        """Nothing to remember."""
-        return {}
+    def gains(self) -> FloatArray:
+        """(k_φ, k_p, k_i, 0): the parameters of :func:`fin_law`."""
+        return np.array([self.k_roll, self.k_rate, self.k_integral, 0.0], dtype=float)
 
-    def command(self, ctx: ForceContext, states: np.ndarray, initial: dict) -> float:
-        """δ_c [rad]."""
-        return -(self.k_roll * ctx.eta[3] + self.k_rate * ctx.nu[3] + self.k_integral * states[0])
 
-    def state_rates(
-        self,
-        ctx: ForceContext,
-        states: np.ndarray,
-        initial: dict,
-        command: float,
-        achievable: float,
-    ) -> np.ndarray:
-        """d/dt ∫φ (frozen while the fins saturate: conditional integration)."""
-        return np.array([0.0 if achievable != command else float(ctx.eta[3])])
+@nb.njit(cache=True, nogil=True)
+def fin_law(gains, eta, nu, integral, limit):  # pragma: no cover - compiled
+    """δ_c = −(k_φ φ + k_p p + k_i ∫φ); d/dt ∫φ = φ, frozen (0) while the fins saturate
+    (conditional integration). Returns (δ_c [rad], d/dt ∫φ [rad])."""
+    command = -(gains[0] * eta[3] + gains[1] * nu[3] + gains[2] * integral)
+    achievable = min(max(command, -limit), limit)
+    return command, (0.0 if achievable != command else eta[3])
 
 
 @dataclass(frozen=True)
@@ -134,7 +132,8 @@ class RideController:
     k_heave: float
     k_pitch: float
 
-    n_states = 0
+    kind: ClassVar[int] = 3
+    """Law index of :func:`ship_gym.control.actuators.control_law`."""
 
     @classmethod
     def tuned(
@@ -153,21 +152,12 @@ class RideController:
         k_q = 2 * added_damping * np.sqrt(c55 * i55_total) / abs(pitch_moment_per_rad)
         return cls(k_heave=float(k_w), k_pitch=float(k_q))
 
-    def initial(self, ctx: ForceContext) -> dict:
-        """Nothing to remember."""
-        return {}
+    def gains(self) -> FloatArray:
+        """(k_w, k_q, 0, 0): the parameters of :func:`ride_law`."""
+        return np.array([self.k_heave, self.k_pitch, 0.0, 0.0], dtype=float)
 
-    def command(self, ctx: ForceContext, states: np.ndarray, initial: dict) -> float:
-        """δ_c [rad]."""
-        return self.k_heave * float(ctx.nu[2]) - self.k_pitch * float(ctx.nu[4])
 
-    def state_rates(
-        self,
-        ctx: ForceContext,
-        states: np.ndarray,
-        initial: dict,
-        command: float,
-        achievable: float,
-    ) -> np.ndarray:
-        """No states."""
-        return np.zeros(0)
+@nb.njit(cache=True, nogil=True)
+def ride_law(gains, nu):  # pragma: no cover - compiled
+    """δ_c = k_w w − k_q q [rad] (no states)."""
+    return gains[0] * nu[2] - gains[1] * nu[4]

@@ -2,7 +2,7 @@
 
 An environment author writes one :class:`BatchedTask`: the physics, observations, rewards and
 termination of N independent episodes held in arrays with a leading episode axis (for the ship
-tasks, one :class:`ship_gym.dynamics.batch.BatchSimulator` holding N ships). Two generic
+tasks, one :class:`ship_gym.engine.batch.BatchSimulator` holding N ships). Two generic
 wrappers turn it into Gymnasium objects:
 
 * :class:`TaskEnv` — one episode (N = 1), a ``gymnasium.Env``: what ``gymnasium.make`` returns

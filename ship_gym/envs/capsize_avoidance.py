@@ -1,4 +1,4 @@
-"""``ship_gym/CapsizeAvoidance-v0``: make way in steep following seas without capsizing.
+"""``ship_gym/CapsizeAvoidance-v1``: make way in steep following seas without capsizing.
 
 Matusiak's capsize scenario (Matusiak 2003, "Importance of memory effect for capsizing
 prediction": regular waves λ = 1.5 L, amplitude 4.5 m for L = 150 m, Fn 0.2–0.4, headings 0–45°
@@ -32,6 +32,7 @@ from ship_gym.envs.ship_task import (
     ship_kwargs,
     vector_env_docstring,
 )
+from ship_gym.typing import Precision, RowIntegratorName
 
 __all__ = [
     "MAX_EPISODE_STEPS",
@@ -74,8 +75,10 @@ class CapsizeAvoidanceTask(S175Task):
         shaft_rate_per_s: float = 0.01,
         physics_dt_s: float = 0.1,
         control_dt_s: float = 0.5,
-        integrator: Literal["holloway", "rk4"] = "holloway",
+        integrator: RowIntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
+        precision: Precision = "float32",
+        num_threads: int = 1,
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 30.0,
         progress_weight: float = 1.0,

@@ -1,4 +1,4 @@
-"""``ship_gym/CourseKeeping-v0``: steer the S175 on a heading in irregular seas with its rudder.
+"""``ship_gym/CourseKeeping-v1``: steer the S175 on a heading in irregular seas with its rudder.
 
 The task (:class:`CourseKeepingTask`) runs on :class:`ship_gym.envs.ship_task.S175Task`; the
 Gymnasium faces are :class:`CourseKeepingEnv` (one episode) and :class:`CourseKeepingVectorEnv`
@@ -29,6 +29,7 @@ from ship_gym.envs.ship_task import (
     ship_kwargs,
     vector_env_docstring,
 )
+from ship_gym.typing import Precision, RowIntegratorName
 
 __all__ = ["MAX_EPISODE_STEPS", "CourseKeepingEnv", "CourseKeepingTask", "CourseKeepingVectorEnv"]
 
@@ -58,8 +59,10 @@ class CourseKeepingTask(S175Task):
         max_rudder_increment_deg: float = 5.0,
         physics_dt_s: float = 0.1,
         control_dt_s: float = 0.5,
-        integrator: Literal["holloway", "rk4"] = "holloway",
+        integrator: RowIntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
+        precision: Precision = "float32",
+        num_threads: int = 1,
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 25.0,
         heading_weight: float = 1.0,
@@ -172,7 +175,7 @@ class CourseKeepingEnv(TaskEnv):
 
     The ITTC S175 container ship (Lpp 175 m, B 25.4 m, T 9.5 m, GM ≈ 1.0 m) sails at its service
     speed (Fn = 0.25, 10.36 m/s) in long-crested JONSWAP seas from a random direction. Its motions
-    are simulated in 6 DOF (:mod:`ship_gym.dynamics.batch`): nonlinear Froude–Krylov and
+    are simulated in 6 DOF (:mod:`ship_gym.engine.batch`): nonlinear Froude–Krylov and
     hydrostatic forces on the instantaneous wetted hull, radiation memory (state-space fit of
     the Cummins kernel), linear diffraction, Ikeda viscous roll damping, Holtrop resistance and
     a B-series propeller at the self-propulsion rpm, hull manoeuvring forces, and a rudder

@@ -1,7 +1,7 @@
-"""The registered environment ids (``ship_gym/<Name>-v0``) and their entry points.
+"""The registered environment ids (``ship_gym/<Name>-vN``) and their entry points.
 
 Gymnasium 1.x does not read package entry points: ``import ship_gym`` calls
-:func:`register_envs`, and ``gymnasium.make("ship_gym:ship_gym/CourseKeeping-v0")`` imports
+:func:`register_envs`, and ``gymnasium.make("ship_gym:ship_gym/CourseKeeping-v1")`` imports
 ``ship_gym`` first (the ``module:`` prefix), so the ids work in a fresh interpreter. Entry points
 are strings: registering imports no environment module (and no simulator).
 
@@ -17,7 +17,6 @@ from dataclasses import dataclass
 import gymnasium
 
 NAMESPACE = "ship_gym"
-VERSION = 0
 
 
 @dataclass(frozen=True)
@@ -33,15 +32,18 @@ class EnvEntry:
     max_episode_steps : int
         Time limit in control steps (the ``TimeLimit`` wrapper of ``gymnasium.make``; the
         vector env counts its own steps).
+    version : int
+        The id's ``-vN`` (bumped when dynamics, observations, rewards or termination change).
     """
 
     name: str
     module: str
     max_episode_steps: int
+    version: int
 
     @property
     def id(self) -> str:
-        return f"{NAMESPACE}/{self.name}-v{VERSION}"
+        return f"{NAMESPACE}/{self.name}-v{self.version}"
 
     @property
     def entry_point(self) -> str:
@@ -53,17 +55,17 @@ class EnvEntry:
 
 
 ENTRIES: tuple[EnvEntry, ...] = (
-    EnvEntry("CourseKeeping", "course_keeping", 1000),
-    EnvEntry("RollStabilization", "roll_stabilization", 1000),
-    EnvEntry("RideControl", "ride_control", 1000),
-    EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500),
-    EnvEntry("RollOneDOF", "roll_one_dof", 1000),
+    EnvEntry("CourseKeeping", "course_keeping", 1000, 1),
+    EnvEntry("RollStabilization", "roll_stabilization", 1000, 1),
+    EnvEntry("RideControl", "ride_control", 1000, 1),
+    EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500, 1),
+    EnvEntry("RollOneDOF", "roll_one_dof", 1000, 0),
 )
 ENV_IDS: tuple[str, ...] = tuple(e.id for e in ENTRIES)
 
 
 def max_episode_steps(name: str) -> int:
-    """The registered time limit [control steps] of ``ship_gym/<name>-v0`` (single source)."""
+    """The registered time limit [control steps] of ``ship_gym/<name>-vN`` (single source)."""
     for entry in ENTRIES:
         if entry.name == name:
             return entry.max_episode_steps

@@ -1,4 +1,4 @@
-"""``ship_gym/RideControl-v0``: reduce the vertical accelerations of the S175 in head seas.
+"""``ship_gym/RideControl-v1``: reduce the vertical accelerations of the S175 in head seas.
 
 The task (:class:`RideControlTask`) runs on :class:`ship_gym.envs.ship_task.S175Task` with the
 comfort bookkeeping of :class:`ship_gym.envs.roll_stabilization.ComfortShipTask`; the Gymnasium
@@ -10,7 +10,6 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Sequence
-from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -29,6 +28,7 @@ from ship_gym.envs.ship_task import (
     ship_kwargs,
     vector_env_docstring,
 )
+from ship_gym.typing import Precision, RowIntegratorName
 
 __all__ = ["MAX_EPISODE_STEPS", "RideControlEnv", "RideControlTask", "RideControlVectorEnv"]
 
@@ -58,8 +58,10 @@ class RideControlTask(ComfortShipTask):
         passenger_point_m: Sequence[float] = (50.0, 0.0, -10.0),
         physics_dt_s: float = 0.05,
         control_dt_s: float = 0.25,
-        integrator: Literal["holloway", "rk4"] = "holloway",
+        integrator: RowIntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
+        precision: Precision = "float32",
+        num_threads: int = 1,
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 25.0,
         vertical_weight: float = 1.0,
@@ -152,7 +154,7 @@ class RideControlEnv(TaskEnv):
     fast monohull: its hydrodynamic database (radiation, diffraction) is validated and bundled,
     while a new hull would need its own BEM database; at Fn 0.3 in head seas the S175's pitch
     and heave accelerations at its bow quarter are those ride control addresses. Its motions are
-    simulated in 6 DOF (:mod:`ship_gym.dynamics`): nonlinear Froude–Krylov and hydrostatic
+    simulated in 6 DOF (:mod:`ship_gym.engine`): nonlinear Froude–Krylov and hydrostatic
     forces, radiation memory, diffraction, Ikeda roll damping, Holtrop resistance and a B-series
     propeller, hull manoeuvring forces, a rudder under the PID heading autopilot, and a 12.8 m²
     T-foil under the forefoot (x = 65 m, ±15°, 20 °/s, :class:`ship_gym.forces.fins.TFoil`).

@@ -1,4 +1,4 @@
-"""``ship_gym/RollStabilization-v0``: reduce the roll of the S175 in beam and quartering seas.
+"""``ship_gym/RollStabilization-v1``: reduce the roll of the S175 in beam and quartering seas.
 
 The task (:class:`RollStabilizationTask`) runs on :class:`ship_gym.envs.ship_task.S175Task` with
 the comfort bookkeeping of :class:`ComfortShipTask` (accelerations at a passenger point,
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,6 +32,7 @@ from ship_gym.envs.ship_task import (
     ship_kwargs,
     vector_env_docstring,
 )
+from ship_gym.typing import Precision, RowIntegratorName
 
 __all__ = [
     "MAX_EPISODE_STEPS",
@@ -81,12 +82,12 @@ class ComfortShipTask(S175Task):
         n = self.num_envs
         self.passenger_point = passenger_point
         self.actuators = tuple(actuators)
-        self._actuator_states = []
+        self._actuator_models = []
         for key, model_name, _ in self.actuators:
-            index = self._state_index(model_name)
-            if index is None:
-                raise ValueError(f"the setup has no servo-driven {model_name!r}")
-            self._actuator_states.append(index)
+            try:
+                self._actuator_models.append(self.sim.actuator_model(model_name))
+            except ValueError:
+                raise ValueError(f"the setup has no servo-driven {model_name!r}") from None
             self.commands[key] = np.zeros(n)
         self.comfort = PassengerComfort(
             n,
@@ -103,7 +104,7 @@ class ComfortShipTask(S175Task):
 
     def actuator_angles(self) -> NDArray:
         """(N, n_actuators) servo angles of the commanded surfaces [rad]."""
-        return self.sim.z[:, self._actuator_states]
+        return np.column_stack([m.angle for m in self._actuator_models])
 
     def _apply_surface_actions(self, actions: NDArray) -> None:
         for j, (key, _, limit) in enumerate(self.actuators):
@@ -169,8 +170,10 @@ class RollStabilizationTask(ComfortShipTask):
         passenger_point_m: Sequence[float] = (-50.0, 10.0, -15.0),
         physics_dt_s: float = 0.1,
         control_dt_s: float = 0.5,
-        integrator: Literal["holloway", "rk4"] = "holloway",
+        integrator: RowIntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
+        precision: Precision = "float32",
+        num_threads: int = 1,
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 25.0,
         roll_weight: float = 1.0,
@@ -283,7 +286,7 @@ class RollStabilizationEnv(TaskEnv):
 
     The ITTC S175 container ship (Lpp 175 m, B 25.4 m, T 9.5 m, GM ≈ 1.0 m, roll natural period
     ≈ 18 s) sails at its service speed (Fn = 0.25, 10.36 m/s) in long-crested JONSWAP seas
-    from the beam and quarters. Its motions are simulated in 6 DOF (:mod:`ship_gym.dynamics`):
+    from the beam and quarters. Its motions are simulated in 6 DOF (:mod:`ship_gym.engine`):
     nonlinear Froude–Krylov and hydrostatic forces on the instantaneous wetted hull, radiation
     memory, linear diffraction, Ikeda roll damping, Holtrop resistance and a B-series propeller,
     hull manoeuvring forces, a rudder, and a pair of 10 m² roll fins amidships behind their servo

@@ -1,7 +1,7 @@
 """Common machinery of the 6-DOF ship tasks: N episodes of the S175 in one BatchSimulator.
 
 A :class:`ShipTask` is a :class:`ship_gym.envs.base.BatchedTask` whose N episodes are N ships of
-one :class:`ship_gym.dynamics.batch.BatchSimulator` (one hull, one force-model setup, each ship
+one :class:`ship_gym.engine.batch.BatchSimulator` (one hull, one force-model setup, each ship
 in its own sea). It does what every ship task needs, on arrays over the N episodes (no per-ship
 Python loop in :meth:`ShipTask.step`):
 
@@ -63,6 +63,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import TYPE_CHECKING, Any, Literal, TypeVar
 
+import numba
 import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
@@ -70,10 +71,11 @@ from numpy.typing import NDArray
 from ship_gym.conventions import GRAVITY
 from ship_gym.envs.base import BatchedTask, TaskStep
 from ship_gym.envs.registration import max_episode_steps
+from ship_gym.typing import Precision, RowIntegratorName
 
 if TYPE_CHECKING:
-    from ship_gym.dynamics.batch import BatchSimulator
-    from ship_gym.dynamics.ship import ShipSetup
+    from ship_gym.engine.batch import BatchSimulator
+    from ship_gym.engine.ship import ShipSetup
     from ship_gym.envs.rendering import RenderSnapshot
     from ship_gym.waves.wave_field import WaveField
 
@@ -102,8 +104,13 @@ __all__ = [
     "vector_env_docstring",
 ]
 
-S175_MESH: tuple[int, int, int, int] = (60, 12, 6, 4)
-"""Default S175 mesh resolution (n_sections, n_below, n_above, n_deck): 2400 panels."""
+S175_MESH: tuple[int, int, int, int] = (50, 10, 4, 2)
+"""Default S175 mesh resolution (n_sections, n_below, n_above, n_deck): 1500 panels (the
+accuracy study, ``docs/accuracy/results.md``: GZ within a few mm and the roll period within
+0.5 % of a 9600-panel mesh)."""
+
+S175_MESH_2400: tuple[int, int, int, int] = (60, 12, 6, 4)
+"""The library's default S175 mesh (2400 panels), the environments' default before v1."""
 
 RUDDER_LIMIT_DEG = 35.0
 """Rudder angle limit of the servo [deg] (:data:`ship_gym.control.actuators.RUDDER_SERVO`)."""
@@ -121,7 +128,7 @@ def prototype_simulator(setup: ShipSetup, num_ships: int, n_components: int) -> 
     """A fresh BatchSimulator of ``num_ships`` calm-water ships of ``setup`` (cached build).
 
     The first call for a (setup, N, component count) builds it
-    (:func:`ship_gym.dynamics.batch.build_batch_simulator`: hull, database, state-space fit,
+    (:func:`ship_gym.engine.batch.build_batch_simulator`: hull, database, state-space fit,
     Nomoto identification of the autopilot…, 0.2–1 s); later calls return a deep copy of the
     cached one (milliseconds).
 
@@ -134,7 +141,7 @@ def prototype_simulator(setup: ShipSetup, num_ships: int, n_components: int) -> 
     n_components : int
         Padded wave-component count (room for every sea given at reset).
     """
-    from ship_gym.dynamics.batch import build_batch_simulator
+    from ship_gym.engine.batch import build_batch_simulator
 
     key = (repr(setup), int(num_ships), int(n_components))
     proto = _PROTOTYPES.get(key)
@@ -331,7 +338,7 @@ class SeaSampler:
     def sample(self, rng: np.random.Generator) -> tuple[WaveField, dict[str, float]]:
         """One episode's wave field and its parameters (``wave_height_m``, ``wave_period_s``,
         ``wave_heading_deg``)."""
-        from ship_gym.dynamics.ship import wave_field_for
+        from ship_gym.engine.ship import wave_field_for
         from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
         height = float(rng.uniform(*self.height_range))
@@ -475,6 +482,8 @@ class ShipTask(BatchedTask, abc.ABC):
 
     setup: ShipSetup
     sim: BatchSimulator
+    num_threads: int = 1
+    """numba threads over the ships in the compiled loop (set by :class:`S175Task`)."""
 
     def __init__(
         self,
@@ -558,7 +567,7 @@ class ShipTask(BatchedTask, abc.ABC):
         self._nominal_shaft_speed = (
             float(self._propeller.shaft_speed_for(setup.speed)) if self._propeller else 0.0
         )
-        self._rudder_state = self._state_index("rudder")
+        self._rudder = self._actuator("rudder")
         self.commands: dict[str, NDArray] = {}
         if setup.propulsion:
             self.commands["shaft_speed"] = np.full(n, self._nominal_shaft_speed)
@@ -570,7 +579,7 @@ class ShipTask(BatchedTask, abc.ABC):
         names = [name for name, _ in _BASE_OBSERVATIONS]
         bounds = [b for _, b in _BASE_OBSERVATIONS]
         low = [-b for b in bounds]
-        if self._rudder_state is not None:
+        if self._rudder is not None:
             names.append("rudder angle [rad]")
             low.append(-math.pi / 2)
             bounds.append(math.pi / 2)
@@ -618,20 +627,18 @@ class ShipTask(BatchedTask, abc.ABC):
             return None
         return _propeller(self.setup.hull, tuple(sorted(self.setup.hull_overrides.items())))
 
-    def _state_index(self, name: str) -> int | None:
-        """Column in ``sim.z`` of the first state of the force model ``name`` (servo angle)."""
-        offset = 0
-        for f in self.sim.forces:
-            if f.name == name and int(f.n_states) > 0:
-                return offset
-            offset += int(f.n_states)
-        return None
+    def _actuator(self, name: str) -> Any:
+        """The servo-driven force model ``name`` of the simulator, or None."""
+        try:
+            return self.sim.actuator_model(name)
+        except ValueError:
+            return None
 
     def rudder_angle(self) -> NDArray:
         """(N,) servo rudder angle δ [rad] (zeros without a rudder)."""
-        if self._rudder_state is None:
+        if self._rudder is None:
             return np.zeros(self.num_envs)
-        return self.sim.z[:, self._rudder_state].copy()
+        return self._rudder.angle.copy()
 
     def shaft_speed_for(self, speed: NDArray) -> NDArray:
         """Calm-water self-propulsion shaft speed [rev/s] at speeds [m/s] (propeller model)."""
@@ -663,8 +670,8 @@ class ShipTask(BatchedTask, abc.ABC):
     def _action_labels(self, i: int) -> dict[str, float]:
         """Current physical commands of episode ``i`` for rendering (label with unit → value)."""
         out: dict[str, float] = {}
-        if self._rudder_state is not None:
-            out["rudder [deg]"] = math.degrees(float(self.sim.z[i, self._rudder_state]))
+        if self._rudder is not None:
+            out["rudder [deg]"] = math.degrees(float(self._rudder.angle[i]))
         if "shaft_speed" in self.commands:
             out["shaft [rpm]"] = 60.0 * float(self.commands["shaft_speed"][i])
         return out
@@ -750,18 +757,11 @@ class ShipTask(BatchedTask, abc.ABC):
         self._apply_actions(a)
         n = self.num_envs
         position_before = sim.eta[:, :2].copy()
-        max_abs = np.abs(sim.eta[:, 3])
-        sum_sq = np.zeros(n)
-        danger = np.zeros(n)
-        commands: Mapping[str, NDArray] | None = self.commands
-        for _ in range(self.substeps):
-            sim.step(commands)
-            commands = None  # held until changed
-            roll = sim.eta[:, 3]
-            absr = np.abs(roll)
-            np.maximum(max_abs, absr, out=max_abs)
-            sum_sq += roll * roll
-            danger += absr > self.dangerous_roll
+        # the control step's physics substeps in one engine call (compiled when possible)
+        if self.num_threads > 1:
+            numba.set_num_threads(min(self.num_threads, numba.config.NUMBA_NUM_THREADS))
+        red = sim.advance(self.substeps, self.commands, danger_roll=self.dangerous_roll)
+        max_abs, sum_sq, danger = red.max_abs_roll, red.sum_sq_roll, red.danger_steps
         diverged = sim.diverged.copy()
         capsized = (max_abs > self.capsize_angle) | diverged
         newly = capsized & ~self.capsized
@@ -825,8 +825,8 @@ class ShipTask(BatchedTask, abc.ABC):
             np.cos(beta),
             np.sin(beta),
         ]
-        if self._rudder_state is not None:
-            cols.append(sim.z[:, self._rudder_state])
+        if self._rudder is not None:
+            cols.append(self._rudder.angle)
         if "shaft_speed" in self.commands:
             cols.append(self.commands["shaft_speed"])
         out = np.empty((self.num_envs, len(self.observation_names)))
@@ -921,6 +921,7 @@ def s175_setup(
     rudder: Literal["command", "autopilot"],
     hull_mesh: Sequence[int],
     kg: float | None,
+    precision: Precision = "float32",
 ) -> ShipSetup:
     """The S175 setup of the ship tasks: state-space radiation memory, diffraction, Ikeda roll
     damping, propulsion (Holtrop resistance + B-series propeller), manoeuvring forces and a
@@ -940,8 +941,10 @@ def s175_setup(
         S175 mesh (n_sections, n_below, n_above, n_deck); :data:`S175_MESH` is the default.
     kg : float or None
         KG of the loading [m] (None: 9.55 m, the ITTC condition, GM ≈ 1.0 m).
+    precision : {"float32", "float64"}
+        Wave sums of the Froude–Krylov kernel (``fk_method`` "fast32" or "fast").
     """
-    from ship_gym.dynamics.ship import ShipSetup
+    from ship_gym.engine.ship import ShipSetup
 
     if not (isinstance(froude_number, int | float) and 0.05 <= froude_number <= 0.5):
         raise ValueError(f"froude_number must be in [0.05, 0.5] [-], got {froude_number!r}")
@@ -949,6 +952,8 @@ def s175_setup(
         raise ValueError(f"physics_dt must be in [0.01, 0.5] [s], got {physics_dt!r}")
     if integrator not in ("holloway", "rk4"):
         raise ValueError(f"integrator must be 'holloway' or 'rk4', got {integrator!r}")
+    if precision not in ("float32", "float64"):
+        raise ValueError(f"precision must be 'float32' or 'float64', got {precision!r}")
     mesh = tuple(hull_mesh) if isinstance(hull_mesh, Sequence) else ()
     if len(mesh) != 4 or not all(
         isinstance(v, int | np.integer) and not isinstance(v, bool) and v >= 2 for v in mesh
@@ -958,7 +963,7 @@ def s175_setup(
             f"got {hull_mesh!r}"
         )
     overrides: dict[str, Any] = {}
-    if mesh != S175_MESH:
+    if mesh != S175_MESH_2400:  # the library hull's own mesh
         overrides.update(
             n_sections=int(mesh[0]),
             n_below=int(mesh[1]),
@@ -983,6 +988,7 @@ def s175_setup(
         propulsion=True,
         manoeuvring=True,
         rudder=rudder,
+        fk_method="fast32" if precision == "float32" else "fast",
     )
 
 
@@ -1033,6 +1039,8 @@ SHIP_KWARGS: tuple[str, ...] = (
     "control_dt_s",
     "integrator",
     "hull_mesh",
+    "precision",
+    "num_threads",
     "capsize_angle_deg",
     "dangerous_roll_deg",
     "capsize_penalty",
@@ -1078,8 +1086,10 @@ class S175Task(ShipTask, abc.ABC):
         Rudder following ``"rudder_command"`` or the PID heading autopilot.
     sea : SeaSampler
         Per-episode sea.
-    froude_number, physics_dt_s, integrator, hull_mesh, kg_m
-        :func:`s175_setup` arguments (Fn [-], dt [s], scheme, mesh, KG [m]).
+    froude_number, physics_dt_s, integrator, hull_mesh, kg_m, precision
+        :func:`s175_setup` arguments (Fn [-], dt [s], scheme, mesh, KG [m], wave sums).
+    num_threads : int
+        numba threads over the ships in the compiled loop (1: serial).
     control_dt_s : float
         Control step [s], an integer multiple of ``physics_dt_s``.
     speed_range_mps : tuple of float or None
@@ -1089,7 +1099,7 @@ class S175Task(ShipTask, abc.ABC):
     capsize_angle_deg, dangerous_roll_deg, capsize_penalty, sensor_noise, wave_preview_m
         :class:`ShipTask` arguments.
     setup_changes : mapping, optional
-        :class:`ship_gym.dynamics.ship.ShipSetup` fields replaced after :func:`s175_setup`
+        :class:`ship_gym.engine.ship.ShipSetup` fields replaced after :func:`s175_setup`
         (e.g. ``{"fins": "command"}``).
     extra_observations : sequence of (name, low, high)
         The subclass's observation entries.
@@ -1104,10 +1114,12 @@ class S175Task(ShipTask, abc.ABC):
         froude_number: float,
         physics_dt_s: float,
         control_dt_s: float,
-        integrator: Literal["holloway", "rk4"],
+        integrator: RowIntegratorName,
         hull_mesh: Sequence[int],
         capsize_angle_deg: float | None,
         dangerous_roll_deg: float,
+        precision: Precision = "float32",
+        num_threads: int = 1,
         capsize_penalty: float,
         sensor_noise: float,
         wave_preview_m: Sequence[float],
@@ -1124,7 +1136,13 @@ class S175Task(ShipTask, abc.ABC):
             rudder=rudder,
             hull_mesh=hull_mesh,
             kg=kg_m,
+            precision=precision,
         )
+        if not (
+            isinstance(num_threads, int) and not isinstance(num_threads, bool) and num_threads >= 1
+        ):
+            raise ValueError(f"num_threads must be an integer >= 1, got {num_threads!r}")
+        self.num_threads = num_threads
         if setup_changes:
             setup = dataclasses.replace(setup, **setup_changes)
         super().__init__(
@@ -1141,6 +1159,7 @@ class S175Task(ShipTask, abc.ABC):
             extra_observations=extra_observations,
             capsize_penalty=capsize_penalty,
         )
+        self.sim.parallel = num_threads > 1
 
     # ------------------------------------------------------------------ shared reward terms
     def roll_term(self, stats: StepStatistics, weight: float, scale: float) -> NDArray:
@@ -1188,6 +1207,8 @@ SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
     "control_dt_s": ("s", "control step (integer multiple of physics_dt_s)"),
     "integrator": ("-", '"holloway" (1 force evaluation/step) or "rk4" (4)'),
     "hull_mesh": ("-", "S175 mesh (sections, panels below/above water, deck)"),
+    "precision": ("-", '"float32" or "float64" wave sums of the Froude–Krylov kernel'),
+    "num_threads": ("-", "numba threads over the batch's ships (1: serial)"),
     "capsize_angle_deg": ("deg", "capsize roll angle (None: vanishing angle of the loading)"),
     "dangerous_roll_deg": ("deg", "roll angle of the Safe-RL cost"),
     "heading_weight": ("-", "weight of the heading term"),
@@ -1261,7 +1282,13 @@ _EnvType = TypeVar("_EnvType", bound=type)
 
 def env_docstring(
     arguments: Mapping[str, tuple[str, str]] | None = None,
-    version_history: Sequence[str] = ("v0: initial version.",),
+    version_history: Sequence[str] = (
+        "v0: initial version.",
+        "v1: one compiled engine call per control step; servos sampled at each physics step "
+        "and advanced by the exact solution of their lag and rate limit (v0 integrated them as "
+        "ODE states: under Holloway's scheme a constant command cycled); defaults 1500-panel "
+        "S175 mesh and float32 wave sums (docs/accuracy/results.md).",
+    ),
 ) -> Callable[[_EnvType], _EnvType]:
     """Class decorator completing a ship environment's Gymnasium v5 docstring.
 

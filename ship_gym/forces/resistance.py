@@ -74,6 +74,13 @@ and destroyer types Fn ≤ 0.45, 0.55–0.67, 6.0–9.5, 3.0–4.0; cargo liners
 :meth:`HoltropMennen.range_report` names every violation; the S175 (C_P ≈ 0.58, L/B ≈ 6.95,
 B/T ≈ 2.67) falls in the cargo-liner range, i.e. up to Fn = 0.30.
 
+Compiled kernel: the method is written once, as ``@numba.njit`` functions of a packed float64
+record (:meth:`HoltropMennen.kernel_parameters`, layout in the ``_HM_*`` index constants):
+:func:`holtrop_total` (R_T), :func:`holtrop_components` (all terms of eq. 1) and
+:func:`holtrop_wave_resistance` (eq. 6). :class:`HoltropMennen`'s methods call them from Python,
+and compiled code (the simulation engine, per ship and step) calls them directly;
+:meth:`CalmWaterResistance.kernel_parameters` raises NotImplementedError for a generic curve.
+
 Verification: the worked example of Holtrop & Mennen (1982) (L = 205 m, B = 32 m, T = 10 m,
 ∇ = 37 500 m³, 25 kn: R_F = 869.63 kN, 1 + k1 = 1.156, R_W = 557.11 kN, R_A = 221.98 kN,
 R_T = 1793.26 kN) is reproduced by ``variant="1982"`` in ``tests/physics/test_propulsion.py``.
@@ -96,6 +103,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal, NamedTuple
 
+import numba as nb
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -535,12 +543,193 @@ class ResistanceComponents:
         return out
 
 
+# ------------------------------------------------------------------------------ compiled kernel
+# Layout of the packed parameter record of one Holtrop–Mennen model (a 1-D float64 array,
+# :meth:`HoltropMennen.kernel_parameters`): everything independent of speed that eq. (1)
+# needs at run time. The compiled functions below are the one implementation of R_T(U); the
+# Python methods of :class:`HoltropMennen` call them too.
+_HM_MIN_SPEED = 0  # U below which R_T is scaled as U² (Rn = 10⁵) [m/s]
+_HM_RN_PER_SPEED = 1  # L / ν: Rn = U · this [s/m]
+_HM_FN_PER_SPEED = 2  # 1 / √(g L): Fn = U · this [s/m]
+_HM_HALF_RHO_S = 3  # ½ ρ S (eqs. 2, 9) [kg/m]
+_HM_HALF_RHO_SAPP_K2 = 4  # ½ ρ S_APP (1 + k2) (eq. 5) [kg/m]
+_HM_RB_FACTOR = 5  # 0.11 exp(−3 P_B^−2) A_BT^1.5 ρ g (eq. 7), 0 without a bulb [N]
+_HM_FNI_DEPTH = 6  # g (T_F − h_B − 0.25 √A_BT) (eq. 7) [m²/s²] (1 without a bulb)
+_HM_FNT_SCALE = 7  # √(2 g A_T / (B + B C_WP)): Fn_T = U / this (eq. 8), 0 without transom [m/s]
+_HM_RHO = 8  # water density ρ [kg/m³]
+_HM_TRANSOM_AREA = 9  # A_T [m²]
+_HM_CORRELATION_ALLOWANCE = 10  # C_A (eq. 9) [-]
+_HM_HALF_RHO_AIR = 11  # ½ ρ_air C_DA A_VT (eq. 10) [kg/m]
+_HM_FORM_FACTOR = 12  # 1 + k1 (eq. 3a / 3b) [-]
+_HM_VARIANT_1984 = 13  # 1.0: Holtrop (1984) wave resistance (m4, high-speed branch); 0.0: 1982
+_HM_M1 = 14  # m1 (eq. 6) [-]
+_HM_M2_FACTOR = 15  # c15 C_P²: m2 = this · exp(−0.1 Fn^−2) (eq. 6, 1982) [-]
+_HM_C15 = 16  # c15 (eq. 6) [-]
+_HM_LAMBDA = 17  # λ (eq. 6) [-]
+_HM_RW_A = 18  # c1 c2 c5 ∇ ρ g (eq. 6) [N]
+_HM_RW_B = 19  # c17 c2 c5 ∇ ρ g (Holtrop 1984, Fn > 0.55) [N]
+_HM_M3 = 20  # m3 (Holtrop 1984) [-]
+_HM_SIZE = 21  # length of the record
+
+
+@nb.njit(cache=True, nogil=True)
+def _holtrop_wave_low(params, fn):  # pragma: no cover - compiled
+    """Eq. (6) (Holtrop's R_W-A) at Froude number fn > 0 [N]: m2 (1982) or m4 (1984)."""
+    fn2 = fn * fn
+    if params[_HM_VARIANT_1984] == 0.0:
+        m = params[_HM_M2_FACTOR] * math.exp(-0.1 / fn2)
+    else:
+        m = 0.4 * params[_HM_C15] * math.exp(-0.034 * fn**-3.29)
+    return params[_HM_RW_A] * math.exp(
+        params[_HM_M1] * fn**-0.9 + m * math.cos(params[_HM_LAMBDA] / fn2)
+    )
+
+
+@nb.njit(cache=True, nogil=True)
+def _holtrop_wave_high(params, fn):  # pragma: no cover - compiled
+    """Holtrop's (1984) R_W-B (Fn > 0.55) [N]."""
+    m4 = 0.4 * params[_HM_C15] * math.exp(-0.034 * fn**-3.29)
+    return params[_HM_RW_B] * math.exp(
+        params[_HM_M3] * fn**-0.9 + m4 * math.cos(params[_HM_LAMBDA] / (fn * fn))
+    )
+
+
+@nb.njit(cache=True, nogil=True)
+def holtrop_wave_resistance(params, froude):  # pragma: no cover - compiled
+    """Wave resistance R_W [N] (eq. 6 and Holtrop's 1984 high-speed branch), compiled.
+
+    Parameters
+    ----------
+    params : numpy.ndarray
+        Packed record (21,) of :meth:`HoltropMennen.kernel_parameters` [mixed units].
+    froude : float
+        Froude number Fn [-].
+
+    Returns
+    -------
+    float
+        R_W [N]: 0 for Fn < 0.01 (where exp(m1 Fn^−0.9) < 10⁻⁴⁰); the 1982 variant uses eq.
+        (6) with m2 throughout; the 1984 variant uses m4 up to Fn = 0.40, R_W-B from Fn =
+        0.55 and interpolates linearly in Fn in between (Holtrop 1984).
+    """
+    fn = froude
+    if fn <= 0.0:
+        return 0.0
+    if fn < 0.01:  # exp(m1 Fn^-0.9) < 1e-40: nothing left, avoid overflow of powers
+        return 0.0
+    if params[_HM_VARIANT_1984] == 0.0 or fn <= 0.40:
+        return _holtrop_wave_low(params, fn)
+    if fn >= 0.55:
+        return _holtrop_wave_high(params, fn)
+    low, high = _holtrop_wave_low(params, 0.40), _holtrop_wave_high(params, 0.55)
+    return low + (10.0 * fn - 4.0) * (high - low) / 1.5
+
+
+@nb.njit(cache=True, nogil=True)
+def holtrop_components(params, speed):  # pragma: no cover - compiled
+    """All terms of eq. (1) at one speed, compiled (the one implementation of R_T).
+
+    Callable from Python and from other ``@njit`` functions (``nogil``: also from threads).
+
+    Parameters
+    ----------
+    params : numpy.ndarray
+        Packed record (21,) of :meth:`HoltropMennen.kernel_parameters` [mixed units].
+    speed : float
+        Speed U [m/s]; its magnitude |U| is used.
+
+    Returns
+    -------
+    tuple of 11 float
+        (Fn [-], Rn [-], C_F [-], R_F [N], R_APP [N], R_W [N], R_B [N], R_TR [N], R_A [N],
+        R_AA [N], R_T [N]): eqs. (2), (5)–(10) and their sum (1). Fn and Rn are those of |U|;
+        below U_min (Rn = 10⁵) the forces are those at U_min scaled by (|U|/U_min)² and C_F
+        is the one at U_min.
+    """
+    v = abs(speed)
+    min_speed = params[_HM_MIN_SPEED]
+    scale = 1.0
+    if v < min_speed:
+        scale = (v / min_speed) ** 2
+        v_eval = min_speed
+    else:
+        v_eval = v
+    rn = v_eval * params[_HM_RN_PER_SPEED]
+    fn = v_eval * params[_HM_FN_PER_SPEED]
+    cf = 0.075 / (math.log10(rn) - 2.0) ** 2  # (2)
+    v2 = v_eval * v_eval
+    r_f = params[_HM_HALF_RHO_S] * v2 * cf  # (2)
+    r_app = params[_HM_HALF_RHO_SAPP_K2] * v2 * cf  # (5)
+    r_w = holtrop_wave_resistance(params, fn)  # (6)
+    rb_factor = params[_HM_RB_FACTOR]
+    if rb_factor > 0.0:  # (7)
+        fni = v_eval / math.sqrt(params[_HM_FNI_DEPTH] + 0.15 * v2)
+        # float exponent: libm pow, as CPython's fni**3 (numba would expand an int literal into
+        # multiplications, which may round differently)
+        r_b = rb_factor * fni**3.0 / (1.0 + fni**2.0)
+    else:
+        r_b = 0.0
+    fnt_scale = params[_HM_FNT_SCALE]
+    if fnt_scale > 0.0:  # (8)
+        fnt = v_eval / fnt_scale
+        c6 = 0.2 * (1.0 - 0.2 * fnt) if fnt < 5.0 else 0.0
+        r_tr = 0.5 * params[_HM_RHO] * v2 * params[_HM_TRANSOM_AREA] * c6
+    else:
+        r_tr = 0.0
+    r_a = params[_HM_HALF_RHO_S] * v2 * params[_HM_CORRELATION_ALLOWANCE]  # (9)
+    r_aa = params[_HM_HALF_RHO_AIR] * v2  # (10)
+    if scale != 1.0:
+        r_f *= scale
+        r_app *= scale
+        r_w *= scale
+        r_b *= scale
+        r_tr *= scale
+        r_a *= scale
+        r_aa *= scale
+    total = params[_HM_FORM_FACTOR] * r_f + r_app + r_w + r_b + r_tr + r_a + r_aa  # (1)
+    return (
+        v * params[_HM_FN_PER_SPEED],
+        v * params[_HM_RN_PER_SPEED],
+        cf,
+        r_f,
+        r_app,
+        r_w,
+        r_b,
+        r_tr,
+        r_a,
+        r_aa,
+        total,
+    )
+
+
+@nb.njit(cache=True, nogil=True)
+def holtrop_total(params, speed):  # pragma: no cover - compiled
+    """Total calm-water resistance R_T(|U|) ≥ 0 [N] (eq. 1), compiled.
+
+    Parameters
+    ----------
+    params : numpy.ndarray
+        Packed record (21,) of :meth:`HoltropMennen.kernel_parameters` [mixed units].
+    speed : float
+        Speed U [m/s]; its magnitude is used (the surge force is −R_T(|u|) sign(u)).
+
+    Returns
+    -------
+    float
+        R_T [N], the last term of :func:`holtrop_components`.
+    """
+    return holtrop_components(params, speed)[10]
+
+
 # ------------------------------------------------------------------------------ the method
 class HoltropMennen:
     """Calm-water resistance of a displacement ship by Holtrop & Mennen (1982) / Holtrop (1984).
 
-    Everything independent of speed is computed once here; a scalar evaluation
-    (:meth:`total`) then costs a few microseconds (a few ``math`` calls).
+    Everything independent of speed is computed once here and packed into one float64 record
+    (:meth:`kernel_parameters`); every evaluation (:meth:`total`, :meth:`total_scalar`,
+    :meth:`components`, :meth:`wave_resistance`) is done by the compiled functions
+    :func:`holtrop_total`, :func:`holtrop_components` and :func:`holtrop_wave_resistance`
+    on that record, which ``@njit`` code (the compiled simulation engine) calls directly.
 
     Parameters
     ----------
@@ -730,95 +919,90 @@ class HoltropMennen:
         self._fn_per_speed = 1.0 / math.sqrt(g * L)
         self.min_speed = MIN_REYNOLDS_NUMBER / self._rn_per_speed
         """Speed below which R_T is scaled as U² [m/s] (Rn = 10⁵)."""
+        self._params = self._pack()
+
+    def _pack(self) -> np.ndarray:
+        """The packed record of :meth:`kernel_parameters` from the speed-independent fields."""
+        params = np.zeros(_HM_SIZE)
+        params[_HM_MIN_SPEED] = self.min_speed
+        params[_HM_RN_PER_SPEED] = self._rn_per_speed
+        params[_HM_FN_PER_SPEED] = self._fn_per_speed
+        params[_HM_HALF_RHO_S] = self._half_rho_s
+        params[_HM_HALF_RHO_SAPP_K2] = self._half_rho_sapp_k2
+        params[_HM_RB_FACTOR] = self._rb_factor
+        params[_HM_FNI_DEPTH] = self._fni_depth
+        params[_HM_FNT_SCALE] = self._fnt_scale
+        params[_HM_RHO] = self.rho
+        params[_HM_TRANSOM_AREA] = self.particulars.transom_area
+        params[_HM_CORRELATION_ALLOWANCE] = self.correlation_allowance
+        params[_HM_HALF_RHO_AIR] = self._half_rho_air
+        params[_HM_FORM_FACTOR] = self.form_factor
+        params[_HM_VARIANT_1984] = 1.0 if self.variant == "1984" else 0.0
+        params[_HM_M1] = self._m1
+        params[_HM_M2_FACTOR] = self._m2_factor
+        params[_HM_C15] = self._c15
+        params[_HM_LAMBDA] = self._lam
+        params[_HM_RW_A] = self._rw_a
+        params[_HM_RW_B] = self._rw_b
+        params[_HM_M3] = self._m3
+        return params
+
+    def kernel_parameters(self) -> np.ndarray:
+        """Packed record of the method for the compiled functions (a fresh copy).
+
+        :func:`holtrop_total` (R_T [N]), :func:`holtrop_components` (all terms of eq. 1) and
+        :func:`holtrop_wave_resistance` (eq. 6) evaluate the method from it, in Python or in
+        ``@njit`` code (the compiled simulation engine); :meth:`total` and :meth:`components`
+        are those same functions.
+
+        Returns
+        -------
+        numpy.ndarray
+            (21,) float64, the speed-independent quantities of eqs. (1)–(10) in the order of
+            the module's ``_HM_*`` index constants: U_min [m/s], L/ν [s/m], 1/√(gL) [s/m],
+            ½ρS [kg/m], ½ρS_APP(1 + k2) [kg/m], the bulb factor of eq. (7) [N], its depth term
+            g(T_F − h_B − 0.25√A_BT) [m²/s²], the transom speed scale of eq. (8) [m/s], ρ
+            [kg/m³], A_T [m²], C_A [-], ½ρ_air C_DA A_VT [kg/m], 1 + k1 [-], the variant flag
+            (1.0: 1984, 0.0: 1982), m1, c15 C_P², c15, λ [-], c1 c2 c5 ∇ρg [N], c17 c2 c5 ∇ρg
+            [N], m3 [-].
+        """
+        return self._params.copy()
 
     # -- wave resistance --------------------------------------------------------------------
     def _wave_low(self, fn: float) -> float:
         """Eq. (6) (Holtrop's R_W-A) at Froude number fn > 0 [N]."""
-        fn2 = fn * fn
-        if self.variant == "1982":
-            m = self._m2_factor * math.exp(-0.1 / fn2)
-        else:
-            m = 0.4 * self._c15 * math.exp(-0.034 * fn**-3.29)
-        return self._rw_a * math.exp(self._m1 * fn**-0.9 + m * math.cos(self._lam / fn2))
+        return _holtrop_wave_low(self._params, float(fn))
 
     def _wave_high(self, fn: float) -> float:
         """Holtrop's (1984) R_W-B (Fn > 0.55) [N]."""
-        m4 = 0.4 * self._c15 * math.exp(-0.034 * fn**-3.29)
-        return self._rw_b * math.exp(self._m3 * fn**-0.9 + m4 * math.cos(self._lam / fn**2))
+        return _holtrop_wave_high(self._params, float(fn))
 
     def wave_resistance(self, froude: float) -> float:
-        """Wave resistance R_W [N] at a Froude number (eq. 6 and Holtrop's high-speed branch)."""
-        fn = float(froude)
-        if fn <= 0.0:
-            return 0.0
-        if fn < 0.01:  # exp(m1 Fn^-0.9) < 1e-40: nothing left, avoid overflow of powers
-            return 0.0
-        if self.variant == "1982" or fn <= 0.40:
-            return self._wave_low(fn)
-        if fn >= 0.55:
-            return self._wave_high(fn)
-        low, high = self._wave_low(0.40), self._wave_high(0.55)
-        return low + (10.0 * fn - 4.0) * (high - low) / 1.5
+        """Wave resistance R_W [N] at a Froude number (eq. 6 and Holtrop's high-speed branch).
+
+        Evaluated by :func:`holtrop_wave_resistance` (0 for Fn < 0.01).
+        """
+        return holtrop_wave_resistance(self._params, float(froude))
 
     # -- components ---------------------------------------------------------------------------
     def _scalar(self, speed: float) -> tuple[float, ...]:
-        """(Fn, Rn, C_F, R_F, R_APP, R_W, R_B, R_TR, R_A, R_AA, R_T) at one speed ≥ 0."""
-        v = abs(float(speed))
-        scale = 1.0
-        if v < self.min_speed:
-            scale = (v / self.min_speed) ** 2
-            v_eval = self.min_speed
-        else:
-            v_eval = v
-        rn = v_eval * self._rn_per_speed
-        fn = v_eval * self._fn_per_speed
-        cf = 0.075 / (math.log10(rn) - 2.0) ** 2
-        v2 = v_eval * v_eval
-        r_f = self._half_rho_s * v2 * cf
-        r_app = self._half_rho_sapp_k2 * v2 * cf
-        r_w = self.wave_resistance(fn)
-        if self._rb_factor > 0.0:
-            fni = v_eval / math.sqrt(self._fni_depth + 0.15 * v2)
-            r_b = self._rb_factor * fni**3 / (1.0 + fni**2)
-        else:
-            r_b = 0.0
-        if self._fnt_scale > 0.0:
-            fnt = v_eval / self._fnt_scale
-            c6 = 0.2 * (1.0 - 0.2 * fnt) if fnt < 5.0 else 0.0
-            r_tr = 0.5 * self.rho * v2 * self.particulars.transom_area * c6
-        else:
-            r_tr = 0.0
-        r_a = self._half_rho_s * v2 * self.correlation_allowance
-        r_aa = self._half_rho_air * v2
-        parts = [r_f, r_app, r_w, r_b, r_tr, r_a, r_aa]
-        if scale != 1.0:
-            parts = [x * scale for x in parts]
-        r_f, r_app, r_w, r_b, r_tr, r_a, r_aa = parts
-        total = self.form_factor * r_f + r_app + r_w + r_b + r_tr + r_a + r_aa
-        return (
-            v * self._fn_per_speed,
-            v * self._rn_per_speed,
-            cf,
-            r_f,
-            r_app,
-            r_w,
-            r_b,
-            r_tr,
-            r_a,
-            r_aa,
-            total,
-        )
+        """(Fn, Rn, C_F, R_F, R_APP, R_W, R_B, R_TR, R_A, R_AA, R_T) at one speed |U| [m/s].
+
+        Evaluated by :func:`holtrop_components`.
+        """
+        return holtrop_components(self._params, float(speed))
 
     def total_scalar(self, speed: float) -> float:
-        """R_T(|U|) [N] at one speed U [m/s] (the force model's fast path)."""
-        return self._scalar(speed)[-1]
+        """R_T(|U|) [N] at one speed U [m/s] (the fast path; :func:`holtrop_total`)."""
+        return holtrop_total(self._params, float(speed))
 
     def total(self, speed: ArrayLike) -> np.ndarray | float:
         """Total calm-water resistance R_T(|U|) ≥ 0 [N] (eq. 1) at speed(s) U [m/s]."""
         if np.ndim(speed) == 0:
-            return self._scalar(speed)[-1]
+            return holtrop_total(self._params, float(speed))
         arr = np.asarray(speed, dtype=float)
-        return np.array([self._scalar(v)[-1] for v in arr.ravel()]).reshape(arr.shape)
+        params = self._params
+        return np.array([holtrop_total(params, v) for v in arr.ravel().tolist()]).reshape(arr.shape)
 
     def components(self, speed: ArrayLike) -> ResistanceComponents:
         """All components of eq. (1) at speed(s) U ≥ 0 [m/s].
@@ -992,6 +1176,36 @@ class CalmWaterResistance(ForceModel):
     def __repr__(self) -> str:
         return f"CalmWaterResistance({self.holtrop or self._curve!r}, name={self.name!r})"
 
+    @property
+    def curve(self) -> Callable[[float], float]:
+        """The curve R_T(U) [N] for U ≥ 0 [m/s], read-only.
+
+        :meth:`HoltropMennen.total_scalar` of :attr:`holtrop`, or the callable given.
+        """
+        return self._curve
+
+    def kernel_parameters(self) -> np.ndarray:
+        """Packed record of the Holtrop–Mennen method for :func:`holtrop_total` in ``@njit`` code.
+
+        Returns
+        -------
+        numpy.ndarray
+            (21,) float64, :meth:`HoltropMennen.kernel_parameters` of :attr:`holtrop`.
+
+        Raises
+        ------
+        NotImplementedError
+            If the model was built from a generic callable curve: it has no compiled form, and
+            compiled code must fall back to calling :attr:`curve` from Python.
+        """
+        if self.holtrop is None:
+            raise NotImplementedError(
+                f"resistance model {self.name!r} is a generic callable curve "
+                f"({self._curve!r}), which has no compiled form; only a Holtrop–Mennen-based "
+                "CalmWaterResistance has kernel_parameters() — call .curve from Python instead"
+            )
+        return self.holtrop.kernel_parameters()
+
     def resistance(self, speed: ArrayLike) -> np.ndarray | float:
         """R_T(|U|) ≥ 0 [N] at speed(s) U [m/s] (the magnitude of the surge force)."""
         if np.ndim(speed) == 0:
@@ -1079,6 +1293,9 @@ __all__ = [
     "ResistanceParticulars",
     "ShipTypeRange",
     "froude_number",
+    "holtrop_components",
+    "holtrop_total",
+    "holtrop_wave_resistance",
     "ittc57_friction_coefficient",
     "resistance_curve",
     "reynolds_number",

@@ -163,7 +163,7 @@ def test_baseline_works_with_sb3_evaluate_policy():
 
 
 def test_ride_baseline_lowers_passenger_vertical_acceleration_on_ride_control():
-    """The tuned T-foil baseline beats zero action on RideControl-v0: seeds 0–3, 40 s each.
+    """The tuned T-foil baseline beats zero action on RideControl-v1: seeds 0–3, 40 s each.
 
     Same seas for both policies (per-episode seeds), so the comparison is deterministic. Measured
     (tuning run): RMS vertical acceleration at the passenger 0.302 vs 0.323 m/s² (−6.4 %), every
@@ -175,7 +175,7 @@ def test_ride_baseline_lowers_passenger_vertical_acceleration_on_ride_control():
     seeds, steps = [0, 1, 2, 3], 160
     runs = {
         name: run_episodes(
-            "ship_gym/RideControl-v0",
+            "ship_gym/RideControl-v1",
             lambda env, name=name: make_baseline(name, env),
             seeds,
             max_steps=steps,

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from ship_gym.analysis import capsize_map as cm
-from ship_gym.dynamics.simulator import SimulationDiverged
+from ship_gym.engine.simulator import SimulationDiverged
 
 
 def _tiny_config(**kw) -> cm.CapsizeMapConfig:

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from ship_gym.analysis import identification as ident
-from ship_gym.dynamics.roll_equation import RollEquation
+from ship_gym.engine.roll_equation import RollEquation
 
 OMEGA = 0.527  # McCue & Campbell's encounter frequency 0.85 × 0.62 [rad/s]
 # eq. 2 with damping and softening stiffness of the Edith Terkol's order of magnitude
@@ -331,7 +331,7 @@ def test_sixdof_beam_sea_roll_natural_frequency_is_identified():
     # its variance in 0.25–0.45 rad/s, where the sea has 0.5 % of its variance), so c_u1 is well
     # determined: √c_u1 within 3 % of the linear ω_n of the database (measured 0.4 % on 1000 s;
     # the 3 % allows for the shorter record). The forcing term is not (see docs/mccue/results.md).
-    from ship_gym.dynamics.ship import ShipSetup, build_simulator
+    from ship_gym.engine.ship import ShipSetup, build_simulator
     from ship_gym.hydro import load_database
     from ship_gym.hydro.rao import natural_frequency
     from ship_gym.waves.sea_state import IrregularSea

@@ -91,7 +91,7 @@ def test_constant_coefficients_taken_at_encounter_frequency(kg):
         assert rad.damping[i, j] == pytest.approx(b_e[i, j], rel=1e-6, abs=1e-6 * b_e[2, 2])
     # case 2a: roll row at ω_φ of *this* loading condition (GM 1.0 m → 0.352 rad/s,
     # GM 0.31 m → lower); the database roll natural frequency follows the KG override
-    from ship_gym.dynamics.ship import roll_natural_frequency
+    from ship_gym.engine.ship import roll_natural_frequency
 
     w_roll = roll_natural_frequency(sim.hull, db)
     assert rad.omega_roll == pytest.approx(w_roll, rel=1e-9)

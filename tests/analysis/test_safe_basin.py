@@ -15,7 +15,7 @@ from ship_gym.analysis.safe_basin import (
     write_basin,
     write_integrity_csv,
 )
-from ship_gym.dynamics.roll_equation import RollEquation
+from ship_gym.engine.roll_equation import RollEquation
 
 ET = RollEquation.edith_terkol()
 UNDAMPED = RollEquation(c1=ET.c1, c2=ET.c2, c3=ET.c3, c4=ET.c4, c5=ET.c5)

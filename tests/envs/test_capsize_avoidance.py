@@ -1,4 +1,4 @@
-"""ship_gym/CapsizeAvoidance-v0: progress reward, autopilot, telegraph, termination, arguments.
+"""ship_gym/CapsizeAvoidance-v1: progress reward, autopilot, telegraph, termination, arguments.
 
 The checks every ship environment passes (checkers, seeding, reward = Σ terms, vector env,
 actions, time limit) are parametrised in test_ship_task.py; coarse S175 mesh as there.

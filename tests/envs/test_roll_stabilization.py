@@ -1,4 +1,4 @@
-"""ship_gym/RollStabilization-v0: the fins damp the roll; arguments.
+"""ship_gym/RollStabilization-v1: the fins damp the roll; arguments.
 
 The checks every ship environment passes (checkers, seeding, reward = Σ terms, vector env,
 actions, time limit), with and without rudder roll stabilisation, are parametrised in

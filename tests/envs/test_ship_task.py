@@ -25,8 +25,8 @@ from _ship_env_checks import (
     uniform_actions,
 )
 
-from ship_gym.dynamics.batch import build_batch_simulator
-from ship_gym.dynamics.ship import ShipSetup, wave_field_for
+from ship_gym.engine.batch import build_batch_simulator
+from ship_gym.engine.ship import ShipSetup, wave_field_for
 from ship_gym.envs.course_keeping import CourseKeepingEnv, CourseKeepingTask
 from ship_gym.envs.registration import ENTRIES
 from ship_gym.envs.ship_task import SeaSampler, arguments_table, loading_condition
@@ -277,5 +277,5 @@ def test_arguments_table_takes_the_defaults_from_the_signature():
     )
     assert "| hs_range_m | (3, 5) | m | significant wave height range |" in table
     assert '| rudder_mode | "absolute" | - | mode |' in table
-    assert "| hull_mesh | (60, 12, 6, 4) | - |" in table
+    assert "| hull_mesh | (50, 10, 4, 2) | - |" in table
     assert "| speed_range_mps | None | m/s |" in table

@@ -1,4 +1,4 @@
-"""Vectorised control models (ship_gym.dynamics.batch_control) against the single-ship ones.
+"""Vectorised control models (ship_gym.engine.batch_control) against the single-ship ones.
 
 A batch built with the vectorised control models must follow (a) the same batch with every
 control model wrapped per ship in PerShipForceModel and (b) independent single-ship Simulators,
@@ -8,15 +8,15 @@ to rounding, while rudder (autopilot or command), fins and T-foil (command or co
 import numpy as np
 import pytest
 
-from ship_gym.dynamics.batch import PerShipForceModel, build_batch_simulator
-from ship_gym.dynamics.batch_control import (
+from ship_gym.engine.batch import PerShipForceModel, build_batch_simulator
+from ship_gym.engine.batch_control import (
     BatchActuatedSurfaces,
     BatchHullManoeuvring,
     BatchPropeller,
     BatchResistance,
     batch_control_model,
 )
-from ship_gym.dynamics.ship import ShipSetup, build_simulator
+from ship_gym.engine.ship import ShipSetup, build_simulator
 from ship_gym.forces.added_resistance import AddedResistance
 from ship_gym.forces.base import ForceContext
 from ship_gym.forces.fins import SternFlaps
@@ -43,10 +43,22 @@ def _single_and_batches(setup):
     return sims, batches
 
 
-def _state_offset(batch, name: str) -> int:
-    """Index in ``batch.z`` of the first state of the force model ``name``."""
-    sizes = [f.n_states for f in batch.forces]
-    return int(sum(sizes[: [f.name for f in batch.forces].index(name)]))
+def _actuator_states(sim) -> np.ndarray:
+    """Servo angles and controller integrals of every actuator of a simulator (per ship rows)."""
+    cols = []
+    for f in sim.forces:
+        models = getattr(f, "models", [f])  # PerShipForceModel: one Actuated per ship
+        st = [getattr(m, "states", None) for m in models]
+        if st[0] is None or getattr(f, "servo", getattr(models[0], "servo", None)) is None:
+            continue
+        if len(st) == 1:
+            cols += [st[0].delta, st[0].integral]
+        else:
+            cols += [
+                np.concatenate([x.delta for x in st]),
+                np.concatenate([x.integral for x in st]),
+            ]
+    return np.column_stack(cols) if cols else np.zeros((1, 0))
 
 
 def _commands(k: int, dt: float) -> dict:
@@ -76,10 +88,12 @@ def _run_and_compare(setup, n_steps):
         per_ship.step(cmd)
         for i, s in enumerate(sims):
             s.step({key: float(v[i]) for key, v in cmd.items()})
-        applied[k] = batch.z[:, -1]  # last state: the last actuator's servo (or controller)
-    single = np.array([np.concatenate([s.eta, s.nu, s.z]) for s in sims])
+        applied[k] = batch.forces[-1].angle  # the last actuator's servo angle
+    single = np.array(
+        [np.concatenate([s.eta, s.nu, s.z, _actuator_states(s).ravel()]) for s in sims]
+    )
     for other, what in ((batch, "vectorised"), (per_ship, "per-ship")):
-        state = np.concatenate([other.eta, other.nu, other.z], axis=1)
+        state = np.concatenate([other.eta, other.nu, other.z, _actuator_states(other)], axis=1)
         scale = np.maximum(np.abs(single).max(axis=0), 1e-6)
         err = np.abs(state - single).max(axis=0) / scale
         assert err.max() < REL_TOL, f"{what} vs single-ship: worst relative error {err.max()}"
@@ -99,8 +113,8 @@ def test_vectorised_control_models_match_per_ship_and_single_ship_runs():
     assert abs(applied[-1, 1] - np.radians(15.0)) < 1e-9
     assert np.ptp(applied[:, 0]) > 0.1
     # the autopilot put the rudder of ship 1 to starboard and of ship 2 to port
-    rudder = _state_offset(batch, "rudder")
-    assert batch.z[1, rudder] > 0.01 and batch.z[2, rudder] < -0.01
+    rudder = batch.actuator_angles("rudder")
+    assert rudder[1] > 0.01 and rudder[2] < -0.01
 
 
 def test_vectorised_controllers_match_with_rk4():

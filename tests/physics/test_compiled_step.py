@@ -8,10 +8,10 @@ with float32 wave sums stay within a stated tolerance of its float64 self.
 import numpy as np
 import pytest
 
-from ship_gym.dynamics.batch import build_batch_simulator
-from ship_gym.dynamics.compiled_step import CompiledShip, build_compiled_ship
-from ship_gym.dynamics.ship import ShipSetup, build_simulator, wave_field_for
-from ship_gym.dynamics.simulator import SimulationDiverged
+from ship_gym.engine.batch import build_batch_simulator
+from ship_gym.engine.compiled_step import CompiledShip, build_compiled_ship
+from ship_gym.engine.ship import ShipSetup, build_simulator, wave_field_for
+from ship_gym.engine.simulator import SimulationDiverged
 from ship_gym.waves.sea_state import IrregularSea
 
 # bow-quartering (roll excited) with a short ramp: the waves are fully up within the compared
@@ -168,7 +168,7 @@ def test_compiled_diffraction_refresh_equals_the_models_look_up(speed):
     # the refresh inside the compiled loop (no return to Python) against
     # Diffraction.heading_expansion, at headings all around the circle and at forward speed
     # (encounter frequencies, some beyond the table: zero, some negative: conjugated)
-    from ship_gym.dynamics.compiled_step import _refresh_diffraction
+    from ship_gym.engine.compiled_step import _refresh_diffraction
 
     ship = build_compiled_ship(ShipSetup(integrator="holloway", speed=speed), _field())
     model, w = ship.models.diffraction, ship.wave_field
@@ -201,7 +201,7 @@ def test_turning_ship_refreshes_in_the_compiled_loop():
 def test_diffraction_above_range_raise_is_raised_from_python():
     # above_range="raise" cannot raise inside numba: the compiled refresh hands such a look-up
     # back to the model, which raises with its message, and the state stays as it was
-    from ship_gym.dynamics.ship import build_force_models
+    from ship_gym.engine.ship import build_force_models
     from ship_gym.forces.diffraction import Diffraction
     from ship_gym.hull import load_hull
     from ship_gym.hydro import load_database

@@ -4,13 +4,15 @@ import numpy as np
 import pytest
 
 from ship_gym.control import (
+    FIN_SERVO,
+    FOIL_SERVO,
     RUDDER_SERVO,
     Actuated,
     HeadingAutopilot,
     NomotoModel,
     ServoSpec,
 )
-from ship_gym.dynamics.simulator import Simulator
+from ship_gym.engine.simulator import Simulator
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.hull import equilibrium, load_hull
 
@@ -53,7 +55,7 @@ def test_servo_rate_and_saturation_are_exact(s175):
     angles = []
     for _ in range(200):
         sim.step({"rudder_command": np.radians(60.0)})  # beyond the ±35° limit
-        angles.append(sim.z[0])
+        angles.append(sim.forces[0].angle)
     angles = np.array(angles)
     steps = np.diff(np.concatenate([[0.0], angles]))
     assert np.all(steps <= rate * sim.dt * (1 + 1e-12))
@@ -78,7 +80,7 @@ def test_autopilot_holds_course_and_steps_20_degrees(s175):
     psi = np.degrees(res.eta[:, 5])
     assert psi.max() < 20.0 * 1.05
     assert abs(psi[-1] - 20.0) < 1.0
-    assert np.degrees(np.abs(sim.z[0])) <= 35.0
+    assert np.degrees(abs(sim.forces[0].angle)) <= 35.0
 
 
 def test_anti_windup_limits_the_integral(s175):
@@ -109,3 +111,50 @@ def test_bad_servo_and_gains_are_rejected():
         NomotoModel(-1.0, 10.0)
     with pytest.raises(ValueError, match="kp"):
         HeadingAutopilot(kp=-1.0, kd=0.0, ki=0.0)
+
+
+@pytest.mark.parametrize("integrator", ["rk4", "abm", "holloway"])
+@pytest.mark.parametrize("dt", [0.05, 0.1, 0.5])
+@pytest.mark.parametrize(
+    "servo", [RUDDER_SERVO, FIN_SERVO, FOIL_SERVO], ids=["rudder", "fins", "foil"]
+)
+def test_servo_settles_to_a_constant_command_under_every_integrator(s175, integrator, dt, servo):
+    # A constant +5° command from 0 (well inside the limits): the angle rises monotonically,
+    # never faster than the rate limit, never past the command, and settles on it. Before the
+    # servo was sampled exactly, Holloway's explicit update of the stiff lag (Δt ≈ T) made a
+    # +5° fin command cycle 2.68° ↔ 7.18° and a +7° rudder command 6.63° ↔ 7.32°.
+    # Tolerances: 1e-12 rad of rounding on the bounds; settled to 1e-9 rad after ten lags
+    # beyond the ramp (e^-10 of the ≤ δ̇_max T band left).
+    model = NomotoModel(0.05, 30.0)
+    inertia = s175.mass.rigid_body_matrix()[5, 5]
+    steering = Actuated(NomotoYaw(inertia, model), servo, "rudder")
+    sim = Simulator(s175, [steering], dt=dt, integrator=integrator, free_dofs=[0, 0, 0, 0, 0, 1])
+    sim.reset(eta=np.zeros(6), nu=np.zeros(6))
+    command = np.radians(5.0)
+    duration = command / servo.max_rate + 10.0 * servo.lag + 2.0
+    angles = [steering.angle]
+    for _ in range(int(np.ceil(duration / dt))):
+        sim.step({"rudder_command": command})
+        angles.append(steering.angle)
+    angles = np.array(angles)
+    steps = np.diff(angles)
+    assert np.all(steps >= -1e-12), "the servo moved away from its command"
+    assert np.all(steps <= servo.max_rate * dt + 1e-12), "the servo beat its rate limit"
+    assert angles.max() <= command + 1e-12, "the servo overshot its command"
+    assert angles[-1] == pytest.approx(command, abs=1e-9)
+
+
+def test_servo_angle_is_the_exact_solution_of_the_lag_and_rate_limit():
+    # closed form vs a fine explicit integration of δ̇ = clip((c − δ)/T, ±R) (Euler, 1e-6 s:
+    # error O(R·1e-6) ≈ 1e-7 rad), over a ramp and the exponential tail
+    servo = FIN_SERVO
+    c, t_end, h = np.radians(20.0), 3.0, 1e-6
+    delta, t, checks = 0.0, 0.0, []
+    for t_check in (0.2, 1.0, 1.33, 1.5, 3.0):
+        while t < t_check - h / 2:
+            delta += h * np.clip((c - delta) / servo.lag, -servo.max_rate, servo.max_rate)
+            t += h
+        checks.append((t_check, delta))
+    for t_check, expected in checks:
+        assert servo.angle_after(0.0, c, t_check) == pytest.approx(expected, abs=2e-6)
+    assert t_end == checks[-1][0]

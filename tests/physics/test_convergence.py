@@ -24,7 +24,7 @@ from functools import cache
 import numpy as np
 import pytest
 
-from ship_gym.dynamics.ship import ShipSetup, build_simulator
+from ship_gym.engine.ship import ShipSetup, build_simulator
 from ship_gym.waves.sea_state import RegularWave
 
 DURATION = 30.0  # [s]

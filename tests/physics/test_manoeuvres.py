@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from ship_gym.analysis import manoeuvres as man
-from ship_gym.dynamics.ship import build_simulator
+from ship_gym.engine.ship import build_simulator
 
 L_S175 = 175.0
 
@@ -55,10 +55,12 @@ def test_recorder_measures_in_the_original_course_frame():
         t = 0.0
         eta = np.array([50.0, -20.0, 0.0, 0.0, 0.0, math.radians(30.0)])
         nu = np.zeros(6)
-        z = np.zeros(1)
+
+        def actuator_angle(self, name):
+            return 0.0
 
     sim = FakeSim()
-    rec = man._Recorder(sim, 0)
+    rec = man._Recorder(sim, "rudder")
     rec.record(0.0)
     sim.t = 10.0
     sim.eta = sim.eta + np.array(

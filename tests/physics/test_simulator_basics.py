@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from ship_gym.dynamics.rigid_body import coriolis_force, gravity_force, kinematics
-from ship_gym.dynamics.simulator import SimulationDiverged, Simulator
+from ship_gym.engine.rigid_body import coriolis_force, gravity_force, kinematics
+from ship_gym.engine.simulator import SimulationDiverged, Simulator
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.forces.froude_krylov import FroudeKrylovHydrostatics
 from ship_gym.hull import equilibrium, hydrostatics, load_hull

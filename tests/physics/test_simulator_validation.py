@@ -51,8 +51,8 @@ from scipy.integrate import quad
 from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
-from ship_gym.dynamics.ship import ShipSetup, build_simulator, wave_field_for
-from ship_gym.dynamics.simulator import SimulationResult, Simulator
+from ship_gym.engine.ship import ShipSetup, build_simulator, wave_field_for
+from ship_gym.engine.simulator import SimulationResult, Simulator
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.forces.diffraction import Diffraction
 from ship_gym.forces.froude_krylov import (

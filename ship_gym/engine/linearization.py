@@ -20,7 +20,7 @@ import numpy as np
 from scipy.linalg import expm
 
 from ship_gym.control.autopilot import NomotoModel
-from ship_gym.dynamics.rigid_body import coriolis_force
+from ship_gym.engine.rigid_body import coriolis_force
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.hull.hull import Hull
 from ship_gym.kinematics import rotation_matrix

@@ -21,23 +21,22 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ship_gym.conventions import DOF_NAMES
-from ship_gym.dynamics.integrators import RK4, AdamsBashforthMoulton, HollowayIntegrator
-from ship_gym.dynamics.rigid_body import coriolis_force, gravity_force
-from ship_gym.dynamics.rigid_body import kinematics as rigid_kinematics
+from ship_gym.engine.integrators import RK4, AdamsBashforthMoulton, HollowayIntegrator
+from ship_gym.engine.rigid_body import coriolis_force, gravity_force
+from ship_gym.engine.rigid_body import kinematics as rigid_kinematics
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.hull.hull import Hull
 from ship_gym.kinematics import rotation_matrix
+from ship_gym.typing import IntegratorName
 from ship_gym.waves.wave_field import WaveField
 
 if TYPE_CHECKING:
     import xarray as xr
-
-IntegratorName = Literal["rk4", "abm", "holloway"]
 
 
 class SimulationDiverged(RuntimeError):
@@ -345,6 +344,22 @@ class Simulator:
         )
         breakdown["coriolis"] = -coriolis_force(self.mass_rb, self.nu)
         return breakdown
+
+    def actuator_angle(self, name: str) -> float:
+        """Servo angle [rad] of the actuated force model ``name`` at the last accepted step.
+
+        Raises
+        ------
+        ValueError
+            If no force model of that name has a servo.
+        """
+        for f in self.forces:
+            if f.name == name and hasattr(f, "angle"):
+                return float(f.angle)
+        raise ValueError(
+            f"no servo-driven force model named {name!r}; the models are "
+            f"{[f.name for f in self.forces]}"
+        )
 
     def elevation_at_ship(self) -> float:
         """Incident-wave elevation at O's horizontal position [m]."""

@@ -1,19 +1,19 @@
-"""Vectorised control force models for :class:`~ship_gym.dynamics.batch.BatchSimulator`.
+"""Vectorised control force models for :class:`~ship_gym.engine.batch.BatchSimulator`.
 
 The single-ship control models (:mod:`ship_gym.forces.propeller`, :mod:`ship_gym.forces.resistance`,
 :mod:`ship_gym.forces.manoeuvring`, :mod:`ship_gym.forces.rudder`, :mod:`ship_gym.forces.fins`
 behind :class:`ship_gym.control.actuators.Actuated`, with the controllers of
 :mod:`ship_gym.control.autopilot` and :mod:`ship_gym.control.stabilisers`) written with a leading
 ship axis. Each class is built from a single-ship model by ``from_model`` (its parameters are read,
-nothing is re-derived), evaluates all rows of a :class:`~ship_gym.dynamics.batch.BatchContext` in
+nothing is re-derived), evaluates all rows of a :class:`~ship_gym.engine.batch.BatchContext` in
 one call, and keeps the internal states of the single-ship model as batch states with the same
 layout (servo angle δ first, then the controller's states). Commands are (N,) arrays over all
 ships or scalars (:meth:`BatchContext.rows`).
 
 The arithmetic is the single-ship models', statement by statement (compiled loops over rows for
 the lifting surfaces, the propeller and the cross-flow strips), so a batch agrees with the same
-ships under :class:`~ship_gym.dynamics.batch.PerShipForceModel` or in single-ship
-:class:`~ship_gym.dynamics.simulator.Simulator` runs to rounding (tested,
+ships under :class:`~ship_gym.engine.batch.PerShipForceModel` or in single-ship
+:class:`~ship_gym.engine.simulator.Simulator` runs to rounding (tested,
 ``tests/physics/test_batch_control.py``). The equations and their sources are in the modules of
 the single-ship models; this module adds none.
 
@@ -31,7 +31,7 @@ Rudder, RollFins, TFoil, SternFlaps         :class:`BatchActuatedSurfaces` witho
 ==========================================  ==================================================
 
 Added resistance in waves (:class:`~ship_gym.forces.added_resistance.AddedResistance`) has no
-batch version; :func:`ship_gym.dynamics.batch.build_batch_simulator` keeps it per ship.
+batch version; :func:`ship_gym.engine.batch.build_batch_simulator` keeps it per ship.
 """
 
 from __future__ import annotations
@@ -45,11 +45,16 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
-from ship_gym.control.actuators import Actuated, ServoSpec
-from ship_gym.control.autopilot import HeadingAutopilot
-from ship_gym.control.stabilisers import FinController, RideController
-from ship_gym.conventions import HEAVE, PITCH, ROLL, SURGE, YAW
-from ship_gym.dynamics.batch import BatchContext, BatchForceModel
+from ship_gym.control.actuators import (
+    NO_CONTROLLER,
+    Actuated,
+    ActuatorStates,
+    ServoSpec,
+    actuator_angle_rows,
+    actuator_commit_rows,
+)
+from ship_gym.conventions import SURGE
+from ship_gym.engine.batch import BatchContext, BatchForceModel
 from ship_gym.forces.base import ForceModel
 from ship_gym.forces.fins import RollFins, SternFlaps, TFoil
 from ship_gym.forces.lifting_surface import SurfaceGroup
@@ -60,12 +65,9 @@ from ship_gym.forces.rudder import Rudder
 
 __all__ = [
     "BatchActuatedSurfaces",
-    "BatchFinController",
-    "BatchHeadingAutopilot",
     "BatchHullManoeuvring",
     "BatchPropeller",
     "BatchResistance",
-    "BatchRideController",
     "batch_control_model",
     "trim_batch_shaft_speed",
 ]
@@ -131,14 +133,33 @@ class BatchResistance(BatchForceModel):
     exact, and small beside the Froude–Krylov kernel at any N).
     """
 
-    def __init__(self, curve: Callable[[float], float], *, name: str = "resistance") -> None:
+    def __init__(
+        self,
+        curve: Callable[[float], float],
+        *,
+        name: str = "resistance",
+        model: CalmWaterResistance | None = None,
+    ) -> None:
         self._curve = curve
         self.name = name
+        self.model = model
 
     @classmethod
     def from_model(cls, model: CalmWaterResistance) -> BatchResistance:
         """The batch version of a single-ship resistance model (same curve and name)."""
-        return cls(model._curve, name=model.name)
+        return cls(model.curve, name=model.name, model=model)
+
+    def kernel_parameters(self) -> NDArray:
+        """The Holtrop–Mennen record of :func:`ship_gym.forces.resistance.holtrop_total`.
+
+        Raises
+        ------
+        NotImplementedError
+            For a resistance curve that is not Holtrop–Mennen.
+        """
+        if self.model is None:
+            raise NotImplementedError(f"resistance {self.name!r} is a bare curve (numpy only)")
+        return self.model.kernel_parameters()
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
         force = np.zeros((ctx.n, 6))
@@ -164,33 +185,41 @@ def _kt_kq(j, kt_c, kq_c, j0):  # pragma: no cover - compiled
     return kt, kq
 
 
-@nb.njit(cache=True)
-def _propeller_rows(
-    u, shaft, kt_c, kq_c, j0, diameter, rho_d4, one_minus_w, one_minus_t, eta_r, astern,
-    z_p, y_p, roll_sign, force, thrust_out,
+@nb.njit(cache=True, nogil=True)
+def propeller_force(
+    u, n, kt_c, kq_c, j0, diameter, rho_d4, one_minus_w, one_minus_t, eta_r, astern, z_p, y_p,
+    roll_sign, out,
 ):  # fmt: skip  # pragma: no cover - compiled
-    """Propeller.evaluate per row: X = (1 − t) T(n, (1 − w) u) at r_P; roll reaction optional."""
+    """Propeller.evaluate for one ship: X = (1 − t) T(n, (1 − w) u) at r_P, roll reaction
+    optional; writes out (6,) and returns the open-water thrust T [N]."""
+    va = one_minus_w * u
+    if abs(n) < 1e-12:
+        thrust, torque = 0.0, 0.0
+    else:
+        sign = 1.0
+        if n < 0.0:  # mirror image of the ahead curves (Propeller.thrust_torque)
+            n, va, sign = -n, -va, -1.0
+        kt, kq = _kt_kq(va / (n * diameter), kt_c, kq_c, j0)
+        thrust = rho_d4 * n * n * kt
+        torque = rho_d4 * diameter * n * n * kq
+        if sign < 0.0:
+            thrust = -astern * thrust
+            torque = -torque
+    x = one_minus_t * thrust
+    out[0] = x
+    out[1] = 0.0
+    out[2] = 0.0
+    out[3] = roll_sign * (torque / eta_r)
+    out[4] = z_p * x
+    out[5] = -y_p * x
+    return thrust
+
+
+@nb.njit(cache=True, nogil=True)
+def _propeller_rows(u, shaft, params, force, thrust_out):  # pragma: no cover - compiled
+    """:func:`propeller_force` per row (params: the tuple of :attr:`BatchPropeller.params`)."""
     for i in range(u.shape[0]):
-        n = shaft[i]
-        va = one_minus_w * u[i]
-        if abs(n) < 1e-12:
-            thrust, torque = 0.0, 0.0
-        else:
-            sign = 1.0
-            if n < 0.0:  # mirror image of the ahead curves (Propeller.thrust_torque)
-                n, va, sign = -n, -va, -1.0
-            kt, kq = _kt_kq(va / (n * diameter), kt_c, kq_c, j0)
-            thrust = rho_d4 * n * n * kt
-            torque = rho_d4 * diameter * n * n * kq
-            if sign < 0.0:
-                thrust = -astern * thrust
-                torque = -torque
-        x = one_minus_t * thrust
-        thrust_out[i] = thrust
-        force[i, 0] = x
-        force[i, 4] = z_p * x
-        force[i, 5] = -y_p * x
-        force[i, 3] = roll_sign * (torque / eta_r)
+        thrust_out[i] = propeller_force(u[i], shaft[i], *params, force[i])
 
 
 class BatchPropeller(BatchForceModel):
@@ -222,6 +251,11 @@ class BatchPropeller(BatchForceModel):
             self._roll_sign = 0.0
         else:
             self._roll_sign = -1.0 if model.handedness == "right" else 1.0
+        self.params = (
+            self._kt, self._kq, self._j0, self._d, self._rho_d4, self._one_minus_w,
+            self._one_minus_t, self._eta_r, self._astern, self._z_p, self._y_p, self._roll_sign,
+        )  # fmt: skip
+        """The arguments of :func:`propeller_force` after (u, n)."""
 
     @classmethod
     def from_model(cls, model: Propeller) -> BatchPropeller:
@@ -236,43 +270,42 @@ class BatchPropeller(BatchForceModel):
                 "propeller has no default shaft_speed"
             )
         force = np.empty((ctx.n, 6))
-        force[:, 1:3] = 0.0
         thrust = np.empty(ctx.n)
-        _propeller_rows(
-            np.ascontiguousarray(ctx.nu[:, SURGE]), n, self._kt, self._kq, self._j0, self._d,
-            self._rho_d4, self._one_minus_w, self._one_minus_t, self._eta_r, self._astern,
-            self._z_p, self._y_p, self._roll_sign, force, thrust,
-        )  # fmt: skip
+        _propeller_rows(np.ascontiguousarray(ctx.nu[:, SURGE]), n, self.params, force, thrust)
         ctx.shared["propeller_thrust"] = thrust
         return force, _no_states(ctx.n)
 
 
-@nb.njit(cache=True)
-def _manoeuvring_rows(
-    nu, c_yv, c_yr, c_nv, c_nr, cda, x, crossflow, roll_lever, force
-):  # pragma: no cover - compiled
-    """HullManoeuvring.evaluate per row: eq. (1) + eq. (3), K = −z_H Y."""
+@nb.njit(cache=True, nogil=True)
+def manoeuvring_force(nu, c_yv, c_yr, c_nv, c_nr, cda, x, crossflow, roll_lever, out):
+    """HullManoeuvring.evaluate for one ship: eq. (1) + eq. (3), K = −z_H Y; writes out (6,)."""
+    u, v, r = nu[0], nu[1], nu[5]
+    au = abs(u)
+    y = c_yv * au * v + c_yr * u * r
+    n = c_nv * u * v + c_nr * au * r
+    if crossflow:
+        yc = 0.0
+        nc = 0.0
+        for k in range(x.shape[0]):
+            vl = v + x[k] * r
+            f = cda[k] * abs(vl) * vl
+            yc += f
+            nc += f * x[k]
+        y += -yc
+        n += -nc
+    out[0] = 0.0
+    out[1] = y
+    out[2] = 0.0
+    out[3] = -roll_lever * y
+    out[4] = 0.0
+    out[5] = n
+
+
+@nb.njit(cache=True, nogil=True)
+def _manoeuvring_rows(nu, params, force):  # pragma: no cover - compiled
+    """:func:`manoeuvring_force` per row."""
     for i in range(nu.shape[0]):
-        u, v, r = nu[i, 0], nu[i, 1], nu[i, 5]
-        au = abs(u)
-        y = c_yv * au * v + c_yr * u * r
-        n = c_nv * u * v + c_nr * au * r
-        if crossflow:
-            yc = 0.0
-            nc = 0.0
-            for k in range(x.shape[0]):
-                vl = v + x[k] * r
-                f = cda[k] * abs(vl) * vl
-                yc += f
-                nc += f * x[k]
-            y += -yc
-            n += -nc
-        force[i, 0] = 0.0
-        force[i, 1] = y
-        force[i, 2] = 0.0
-        force[i, 3] = -roll_lever * y
-        force[i, 4] = 0.0
-        force[i, 5] = n
+        manoeuvring_force(nu[i], *params, force[i])
 
 
 class BatchHullManoeuvring(BatchForceModel):
@@ -289,6 +322,8 @@ class BatchHullManoeuvring(BatchForceModel):
         self._x = np.ascontiguousarray(model._x, dtype=float)
         self._crossflow = bool(model.crossflow)
         self._roll_lever = float(model.roll_lever)
+        self.params = (*self._c, self._cda, self._x, self._crossflow, self._roll_lever)
+        """The arguments of :func:`manoeuvring_force` after ν."""
 
     @classmethod
     def from_model(cls, model: HullManoeuvring) -> BatchHullManoeuvring:
@@ -297,9 +332,7 @@ class BatchHullManoeuvring(BatchForceModel):
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
         force = np.empty((ctx.n, 6))
-        _manoeuvring_rows(
-            ctx.nu, *self._c, self._cda, self._x, self._crossflow, self._roll_lever, force
-        )
+        _manoeuvring_rows(ctx.nu, self.params, force)
         return force, _no_states(ctx.n)
 
 
@@ -342,183 +375,103 @@ def _slipstream_speed(u_a, thrust, diameter, distance, rho, span):  # pragma: no
     return math.sqrt(fraction * v_x * v_x + (1.0 - fraction) * u_a * u_a)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
+def surface_group_force(
+    nu, d, inflow, wake, gamma_v, gamma_r, prop_d, prop_x, thrust_mode, thrust,
+    pos, axis, chord, lead, area, span, rho, lift_slope, stall, transition, cd0, k_induced,
+    cn, k0, k1, out,
+):  # fmt: skip  # pragma: no cover - compiled
+    """SurfaceGroup.evaluate for one ship: Σ over surfaces k0 ≤ k < k1 of
+    LiftingSurface.components at the applied angle ``d`` [rad]; writes out (6,).
+
+    Inflow: ``_INFLOW_RUDDER`` — Rudder._inflow (eq. 1–4 of the rudder module: wake, actuator-
+    disk slipstream of the thrust, flow straightening); ``_INFLOW_RIGID`` — the rigid-body
+    velocity v + ω × r with the axial part scaled by 1 − w (fins, foil, flaps). ``thrust``:
+    the propeller thrust [N] (mode 1) or C_Th (mode 2).
+    """
+    u, v, w, p, q, r = nu[0], nu[1], nu[2], nu[3], nu[4], nu[5]
+    f0 = f1 = f2 = f3 = f4 = f5 = 0.0
+    for k in range(k0, k1):
+        x_s, y_s, z_s = pos[k, 0], pos[k, 1], pos[k, 2]
+        if inflow == 0:
+            u_a = (1.0 - wake) * (u + q * z_s - r * y_s)
+            vx = u_a
+            if u_a >= 0.0:
+                if thrust_mode == 1:
+                    t_k = thrust
+                elif thrust_mode == 2:
+                    t_k = thrust * 0.5 * rho[k] * u_a * u_a * math.pi * prop_d * prop_d / 4.0
+                else:
+                    t_k = 0.0
+                if t_k > 0.0:
+                    vx = _slipstream_speed(u_a, t_k, prop_d, prop_x, rho[k], span[k])
+            vy = gamma_v * v + gamma_r * x_s * r - p * z_s
+            vz = w + p * y_s - q * x_s
+        else:
+            vx = (1.0 - wake) * (u + q * z_s - r * y_s)
+            vy = v + r * x_s - p * z_s
+            vz = w + p * y_s - q * x_s
+        # LiftingSurface._alpha_speed
+        ax, ay, az = axis[k, 0], axis[k, 1], axis[k, 2]
+        vs = vx * ax + vy * ay + vz * az
+        px, py, pz = vx - vs * ax, vy - vs * ay, vz - vs * az
+        speed = math.sqrt(px * px + py * py + pz * pz)
+        if speed < 1e-9:
+            continue  # components(): zero force (0.0 added)
+        theta = math.atan2(
+            px * lead[k, 0] + py * lead[k, 1] + pz * lead[k, 2],
+            px * chord[k, 0] + py * chord[k, 1] + pz * chord[k, 2],
+        )
+        alpha = (d - theta + math.pi) % (2.0 * math.pi) - math.pi
+        cl, cd = _coefficients(
+            alpha, lift_slope[k], stall[k], transition[k], cd0[k], k_induced[k], cn[k]
+        )
+        dx, dy, dz = px / speed, py / speed, pz / speed
+        qa = 0.5 * rho[k] * speed * speed * area[k]
+        lift, drag = qa * cl, qa * cd
+        fx = lift * (ay * dz - az * dy) - drag * dx
+        fy = lift * (az * dx - ax * dz) - drag * dy
+        fz = lift * (ax * dy - ay * dx) - drag * dz
+        f0 += fx
+        f1 += fy
+        f2 += fz
+        f3 += y_s * fz - z_s * fy
+        f4 += z_s * fx - x_s * fz
+        f5 += x_s * fy - y_s * fx
+    out[0] = f0
+    out[1] = f1
+    out[2] = f2
+    out[3] = f3
+    out[4] = f4
+    out[5] = f5
+
+
+@nb.njit(cache=True, nogil=True)
 def _surfaces_rows(
     nu, delta, inflow, wake, gamma_v, gamma_r, prop_d, prop_x, thrust_mode, thrust,
     pos, axis, chord, lead, area, span, rho, lift_slope, stall, transition, cd0, k_induced,
     cn, force,
 ):  # fmt: skip  # pragma: no cover - compiled
-    """SurfaceGroup.evaluate per row: Σ over surfaces of LiftingSurface.components.
-
-    Inflow: ``_INFLOW_RUDDER`` — Rudder._inflow (eq. 1–4 of the rudder module: wake, actuator-
-    disk slipstream of the thrust, flow straightening); ``_INFLOW_RIGID`` — the rigid-body
-    velocity v + ω × r with the axial part scaled by 1 − w (fins, foil, flaps).
-    """
-    n_surf = pos.shape[0]
+    """:func:`surface_group_force` per row (all surfaces of the group)."""
     for i in range(nu.shape[0]):
-        u, v, w, p, q, r = nu[i, 0], nu[i, 1], nu[i, 2], nu[i, 3], nu[i, 4], nu[i, 5]
-        f0 = f1 = f2 = f3 = f4 = f5 = 0.0
-        d = delta[i]
-        for k in range(n_surf):
-            x_s, y_s, z_s = pos[k, 0], pos[k, 1], pos[k, 2]
-            if inflow == 0:
-                u_a = (1.0 - wake) * (u + q * z_s - r * y_s)
-                vx = u_a
-                if u_a >= 0.0:
-                    if thrust_mode == 1:
-                        t_k = thrust[i]
-                    elif thrust_mode == 2:
-                        t_k = thrust[i] * 0.5 * rho[k] * u_a * u_a * math.pi * prop_d * prop_d / 4.0
-                    else:
-                        t_k = 0.0
-                    if t_k > 0.0:
-                        vx = _slipstream_speed(u_a, t_k, prop_d, prop_x, rho[k], span[k])
-                vy = gamma_v * v + gamma_r * x_s * r - p * z_s
-                vz = w + p * y_s - q * x_s
-            else:
-                vx = (1.0 - wake) * (u + q * z_s - r * y_s)
-                vy = v + r * x_s - p * z_s
-                vz = w + p * y_s - q * x_s
-            # LiftingSurface._alpha_speed
-            ax, ay, az = axis[k, 0], axis[k, 1], axis[k, 2]
-            vs = vx * ax + vy * ay + vz * az
-            px, py, pz = vx - vs * ax, vy - vs * ay, vz - vs * az
-            speed = math.sqrt(px * px + py * py + pz * pz)
-            if speed < 1e-9:
-                continue  # components(): zero force (0.0 added)
-            theta = math.atan2(
-                px * lead[k, 0] + py * lead[k, 1] + pz * lead[k, 2],
-                px * chord[k, 0] + py * chord[k, 1] + pz * chord[k, 2],
-            )
-            alpha = (d - theta + math.pi) % (2.0 * math.pi) - math.pi
-            cl, cd = _coefficients(
-                alpha, lift_slope[k], stall[k], transition[k], cd0[k], k_induced[k], cn[k]
-            )
-            dx, dy, dz = px / speed, py / speed, pz / speed
-            qa = 0.5 * rho[k] * speed * speed * area[k]
-            lift, drag = qa * cl, qa * cd
-            fx = lift * (ay * dz - az * dy) - drag * dx
-            fy = lift * (az * dx - ax * dz) - drag * dy
-            fz = lift * (ax * dy - ay * dx) - drag * dz
-            f0 += fx
-            f1 += fy
-            f2 += fz
-            f3 += y_s * fz - z_s * fy
-            f4 += z_s * fx - x_s * fz
-            f5 += x_s * fy - y_s * fx
-        force[i, 0] = f0
-        force[i, 1] = f1
-        force[i, 2] = f2
-        force[i, 3] = f3
-        force[i, 4] = f4
-        force[i, 5] = f5
-
-
-class BatchHeadingAutopilot:
-    """:class:`HeadingAutopilot` (PID on the heading error, back-calculation anti-windup) on rows.
-
-    The heading at each ship's reset is the set-point until ``commands["heading"]`` is given.
-    """
-
-    n_states = 1
-
-    def __init__(self, controller: HeadingAutopilot) -> None:
-        self.kp, self.kd, self.ki = controller.kp, controller.kd, controller.ki
-        self.tracking_time = controller.tracking_time
-        self.heading_key = controller.heading_key
-        self._initial_heading = np.zeros(1)
-
-    def bind(self, n_ships: int) -> None:
-        """Room for the per-ship initial headings."""
-        self._initial_heading = np.zeros(n_ships)
-
-    def reset(self, ships: NDArray[np.int64], ctx: BatchContext) -> None:
-        """Remember the headings of ``ships`` at their reset (HeadingAutopilot.initial)."""
-        self._initial_heading[ships] = ctx.eta[:, YAW]
-
-    def evaluate(self, ctx: BatchContext, states: NDArray, limit: float) -> tuple[NDArray, NDArray]:
-        """δ_c [rad] (n,) before saturation, and d/dt ∫e (n, 1) with back-calculation:
-        e + (δ_achievable − δ_c)/(K_i T_t) (0 if K_i = 0)."""
-        ref = _command_rows(ctx, self.heading_key, None)
-        if ref is None:
-            ref = ctx.rows(self._initial_heading)
-        e = (ref - ctx.eta[:, YAW] + np.pi) % (2.0 * np.pi) - np.pi
-        command = self.kp * e - self.kd * ctx.nu[:, YAW] + self.ki * states[:, 0]
-        if self.ki == 0.0:
-            return command, np.zeros((ctx.n, 1))
-        achievable = np.minimum(np.maximum(command, -limit), limit)
-        return command, (e + (achievable - command) / (self.ki * self.tracking_time))[:, None]
-
-
-class BatchFinController:
-    """:class:`FinController` δ_c = −(k_φ φ + k_p p + k_i ∫φ) on rows (conditional integration)."""
-
-    n_states = 1
-
-    def __init__(self, controller: FinController) -> None:
-        self.k_roll, self.k_rate = controller.k_roll, controller.k_rate
-        self.k_integral = controller.k_integral
-
-    def bind(self, n_ships: int) -> None:
-        """Nothing per ship."""
-
-    def reset(self, ships: NDArray[np.int64], ctx: BatchContext) -> None:
-        """Nothing to remember."""
-
-    def evaluate(self, ctx: BatchContext, states: NDArray, limit: float) -> tuple[NDArray, NDArray]:
-        """δ_c [rad] (n,) and d/dt ∫φ (n, 1): φ, frozen (0) while the fins saturate."""
-        phi = ctx.eta[:, ROLL]
-        command = -(
-            self.k_roll * phi + self.k_rate * ctx.nu[:, ROLL] + self.k_integral * states[:, 0]
-        )
-        achievable = np.minimum(np.maximum(command, -limit), limit)
-        return command, np.where(achievable != command, 0.0, phi)[:, None]
-
-
-class BatchRideController:
-    """:class:`RideController` δ_c = k_w w − k_q q on rows (no states)."""
-
-    n_states = 0
-
-    def __init__(self, controller: RideController) -> None:
-        self.k_heave, self.k_pitch = controller.k_heave, controller.k_pitch
-
-    def bind(self, n_ships: int) -> None:
-        """Nothing per ship."""
-
-    def reset(self, ships: NDArray[np.int64], ctx: BatchContext) -> None:
-        """Nothing to remember."""
-
-    def evaluate(self, ctx: BatchContext, states: NDArray, limit: float) -> tuple[NDArray, NDArray]:
-        """δ_c [rad] (n,) and no state rates (n, 0)."""
-        command = self.k_heave * ctx.nu[:, HEAVE] - self.k_pitch * ctx.nu[:, PITCH]
-        return command, np.zeros((ctx.n, 0))
-
-
-BatchController = BatchHeadingAutopilot | BatchFinController | BatchRideController
-
-
-def _batch_controller(controller: object) -> BatchController | None:
-    if controller is None:
-        return None
-    if isinstance(controller, HeadingAutopilot):
-        return BatchHeadingAutopilot(controller)
-    if isinstance(controller, FinController):
-        return BatchFinController(controller)
-    if isinstance(controller, RideController):
-        return BatchRideController(controller)
-    raise NotImplementedError(f"no batch version of controller {type(controller).__name__!r}")
+        surface_group_force(
+            nu[i], delta[i], inflow, wake, gamma_v, gamma_r, prop_d, prop_x, thrust_mode,
+            thrust[i], pos, axis, chord, lead, area, span, rho, lift_slope, stall, transition,
+            cd0, k_induced, cn, 0, pos.shape[0], force[i],
+        )  # fmt: skip
 
 
 class BatchActuatedSurfaces(BatchForceModel):
     """A rudder, roll fins, T-foil or stern flaps behind a servo, for all ships.
 
     The batch version of ``Actuated(surface_group, servo, key, controller=…)``
-    (:mod:`ship_gym.control.actuators`): state δ per ship (the servo angle), then the
-    controller's states; the command comes from the controller or from
-    ``ctx.commands[command_key]`` ((N,) or scalar, missing → 0); the surfaces see the applied
-    angle clip(δ, ±δ_max) (fins, foil and flaps clip it again to their own ``max_angle``). With
-    ``servo=None`` (a bare surface group) the angle is read from ``ctx.commands[key]`` directly.
+    (:mod:`ship_gym.control.actuators`: the command sampled at each step start, the servo
+    angle from the exact solution of its lag and rate limit), with the same kernels on rows:
+    per-ship :class:`~ship_gym.control.actuators.ActuatorStates` (no ODE states); the command
+    comes from the controller or from ``ctx.commands[command_key]`` ((N,) or scalar,
+    missing → 0); fins, foil and flaps clip the angle again to their own ``max_angle``. With
+    ``servo=None`` (a bare surface group) the angle is read from ``ctx.commands[key]``
+    directly.
 
     Parameters
     ----------
@@ -535,13 +488,15 @@ class BatchActuatedSurfaces(BatchForceModel):
         Feedback law.
     """
 
+    n_states = 0
+
     def __init__(
         self,
         group: SurfaceGroup,
         servo: ServoSpec | None,
         key: str,
         command_key: str | None = None,
-        controller: object = None,
+        controller: Any = None,
     ) -> None:
         if isinstance(group, Rudder):
             self._inflow = _INFLOW_RUDDER
@@ -566,15 +521,14 @@ class BatchActuatedSurfaces(BatchForceModel):
         self.servo = servo
         self.key = key
         self.command_key = command_key or f"{key}_command"
-        self.controller = _batch_controller(controller)
-        n_ctl = 0 if self.controller is None else int(self.controller.n_states)
-        self.n_states = 0 if servo is None else 1 + n_ctl
+        self.controller = controller
+        self.kind = NO_CONTROLLER if controller is None else int(controller.kind)
+        self.gains = np.zeros(4) if controller is None else np.asarray(controller.gains(), float)
         self._geometry = tuple(
             np.array([getattr(sf, name) for sf in group.surfaces], dtype=float)
             for name in _SURFACE_KERNEL_FIELDS
         )
-        if servo is not None:
-            self._tau = max(servo.time_constant, 0.05)  # ServoSpec.rate's linear zone
+        self.states = ActuatorStates(1)
 
     @classmethod
     def from_model(cls, model: Actuated | SurfaceGroup) -> BatchActuatedSurfaces:
@@ -592,13 +546,34 @@ class BatchActuatedSurfaces(BatchForceModel):
             return cls(model, None, key)
         raise NotImplementedError(f"no batch version of {type(model).__name__}")
 
+    @property
+    def angle(self) -> NDArray:
+        """(N,) servo angles at the last accepted step [rad] (a view; zeros without a servo)."""
+        return self.states.delta
+
     def bind(self, n_ships: int, n_comp: int) -> None:
-        if self.controller is not None:
-            self.controller.bind(n_ships)
+        self.states = ActuatorStates(n_ships)
 
     def reset(self, ships: NDArray[np.int64], ctx: BatchContext) -> None:
-        if self.controller is not None:
-            self.controller.reset(ships, ctx)
+        self.states.reset(ships, ctx.t, ctx.eta, ctx.nu)
+
+    def reference(self, ctx: BatchContext) -> NDArray:
+        """(n,) the law's reference of the rows: ψ_ref [rad] (autopilot; the heading at reset
+        without a ``heading`` command) or the open-loop commanded angle [rad]."""
+        if self.kind == 1:
+            ref = _command_rows(ctx, self.controller.heading_key, None)
+            return ctx.rows(self.states.initial_heading) if ref is None else ref
+        if self.kind == NO_CONTROLLER:
+            return _command_rows(ctx, self.command_key, 0.0)  # type: ignore[return-value]
+        return np.zeros(ctx.n)
+
+    def _kernel_args(self) -> tuple:
+        st, sv = self.states, self.servo
+        assert sv is not None
+        return (
+            self.kind, self.gains, sv.max_angle, sv.max_rate, sv.lag, st.delta, st.integral,
+            st.t_step, st.eta_step, st.nu_step,
+        )  # fmt: skip
 
     def _thrust(self, ctx: BatchContext) -> tuple[int, NDArray]:
         """Rudder._thrust's sources in its order: shared thrust, thrust command, C_Th."""
@@ -629,22 +604,23 @@ class BatchActuatedSurfaces(BatchForceModel):
         return force
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
-        servo = self.servo
-        if servo is None:
+        if self.servo is None:
             angle = _command_rows(ctx, self.key, 0.0)
-            return self.surface_force(ctx, angle), _no_states(ctx.n)
-        delta = states[:, 0]
-        limit = servo.max_angle
-        applied = np.minimum(np.maximum(delta, -limit), limit)
-        rates = np.empty((ctx.n, self.n_states))
-        if self.controller is None:
-            command = _command_rows(ctx, self.command_key, 0.0)
-        else:
-            command, rates[:, 1:] = self.controller.evaluate(ctx, states[:, 1:], limit)
-        target = np.minimum(np.maximum(command, -limit), limit)
-        rate = (target - delta) / self._tau
-        rates[:, 0] = np.minimum(np.maximum(rate, -servo.max_rate), servo.max_rate)
-        return self.surface_force(ctx, applied), rates
+            return self.surface_force(ctx, angle), _no_states(ctx.n)  # type: ignore[arg-type]
+        angle = np.empty(ctx.n)
+        actuator_angle_rows(
+            ctx.ships, np.ascontiguousarray(ctx.t, dtype=float), self.reference(ctx),
+            *self._kernel_args(), angle,
+        )  # fmt: skip
+        return self.surface_force(ctx, angle), _no_states(ctx.n)
+
+    def commit(self, ctx: BatchContext, states: NDArray) -> None:
+        if self.servo is None:
+            return
+        actuator_commit_rows(
+            ctx.ships, np.ascontiguousarray(ctx.t, dtype=float), ctx.eta, ctx.nu,
+            self.reference(ctx), *self._kernel_args(),
+        )  # fmt: skip
 
 
 # =============================================================================================
@@ -678,8 +654,8 @@ def trim_batch_shaft_speed(
 ) -> NDArray:
     """Per-ship shaft speeds [rev/s] that make ``speed`` a steady straight run (and set them).
 
-    :func:`ship_gym.dynamics.ship.trim_shaft_speed` for every ship of a
-    :class:`~ship_gym.dynamics.batch.BatchSimulator` at its current state (call it right after
+    :func:`ship_gym.engine.ship.trim_shaft_speed` for every ship of a
+    :class:`~ship_gym.engine.batch.BatchSimulator` at its current state (call it right after
     construction): the surge force of everything but the propeller at ν = (U, 0, …, 0) is
     balanced by (1 − t) T(n, (1 − w) U) (Brent on n), a few fixed-point iterations for the
     rudder's slipstream drag. Returns the (N,) shaft speeds, also put in

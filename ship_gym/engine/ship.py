@@ -35,8 +35,8 @@ from scipy.optimize import brentq
 from ship_gym.control.actuators import FIN_SERVO, FOIL_SERVO, RUDDER_SERVO, Actuated
 from ship_gym.control.autopilot import HeadingAutopilot
 from ship_gym.control.stabilisers import FinController, RideController, control_derivative
-from ship_gym.dynamics.linearization import nomoto_from_models
-from ship_gym.dynamics.simulator import IntegratorName, Simulator
+from ship_gym.engine.linearization import nomoto_from_models
+from ship_gym.engine.simulator import Simulator
 from ship_gym.forces.added_resistance import AddedResistance
 from ship_gym.forces.base import ForceModel
 from ship_gym.forces.diffraction import Diffraction
@@ -53,6 +53,7 @@ from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
 from ship_gym.hydro.rao import natural_frequency
 from ship_gym.kinematics import encounter_frequency
+from ship_gym.typing import IntegratorName
 from ship_gym.waves.sea_state import IrregularSea, RegularWave
 from ship_gym.waves.wave_field import WaveField
 

@@ -74,6 +74,8 @@ import numba as nb
 import numpy as np
 import numpy.typing as npt
 
+from ship_gym.typing import FloatArray
+
 __all__ = [
     "RK4",
     "AdamsBashforthMoulton",
@@ -84,7 +86,6 @@ __all__ = [
     "integrate",
 ]
 
-FloatArray = npt.NDArray[np.float64]
 KinematicsFn = Callable[[FloatArray, FloatArray], FloatArray]
 RhsFn = Callable[..., Any]
 

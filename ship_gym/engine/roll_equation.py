@@ -46,6 +46,8 @@ import numpy as np
 import numpy.typing as npt
 from numpy.typing import NDArray
 
+from ship_gym.typing import FloatArray
+
 __all__ = [
     "EDITH_TERKOL_NATURAL_FREQUENCY",
     "MomentFn",
@@ -56,7 +58,6 @@ __all__ = [
 #: Natural roll frequency ωₙ of the Edith Terkol [rad/s] (McCue & Campbell: ωₑ = 0.85 · 0.62).
 EDITH_TERKOL_NATURAL_FREQUENCY = 0.62
 
-FloatArray = NDArray[np.float64]
 #: A time-varying moment per unit inertia: ``m(t [s], phi [rad], phidot [rad/s]) -> [rad/s²]``.
 MomentFn = Callable[[float, FloatArray, FloatArray], npt.ArrayLike]
 

@@ -2,7 +2,7 @@
 
 :class:`CompiledShip` advances one ship by K steps in **one** numba call: no Python between the
 force models, no array allocation per evaluation beyond the Froude–Krylov kernel's work
-buffers. The force set is the fast path of :func:`ship_gym.dynamics.ship.build_simulator`
+buffers. The force set is the fast path of :func:`ship_gym.engine.ship.build_simulator`
 (the "S175-full" reference case):
 
 * nonlinear Froude–Krylov + hydrostatics on the instantaneous wetted hull (the fast kernel of
@@ -22,9 +22,9 @@ buffers. The force set is the fast path of :func:`ship_gym.dynamics.ship.build_s
 * Holloway's μ-Taylor scheme (Holloway 2007, eq. 4, 6–9; one evaluation per step) after two
   RK4 start-up steps, or RK4 throughout.
 
-The equations and the arithmetic are those of :class:`ship_gym.dynamics.batch.BatchSimulator`
+The equations and the arithmetic are those of :class:`ship_gym.engine.batch.BatchSimulator`
 (Kring–Huang–Sclavounos form, (M_RB + A(∞)) ν̇ = Σ F + F_g − C_RB(ν) ν), which agrees with
-:class:`ship_gym.dynamics.simulator.Simulator`; ``tests/physics/test_compiled_step.py`` holds
+:class:`ship_gym.engine.simulator.Simulator`; ``tests/physics/test_compiled_step.py`` holds
 the float64 stepper to both at rounding level over hundreds of steps, and the float32 one to
 the float64 one with a stated tolerance. The wave phasors use the polynomial
 :func:`ship_gym.forces.fastmath.sincos` (a few ulp from libm) instead of libm calls.
@@ -38,15 +38,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal
 
 import numba as nb
 import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.conventions import SURGE
-from ship_gym.dynamics.ship import Sea, ShipSetup, build_force_models
-from ship_gym.dynamics.simulator import SimulationDiverged, left_hand_side
+from ship_gym.engine.ship import Sea, ShipSetup, build_force_models
+from ship_gym.engine.simulator import SimulationDiverged, left_hand_side
 from ship_gym.forces.diffraction import Diffraction, transfer_element
 from ship_gym.forces.fastmath import sincos_turns
 from ship_gym.forces.froude_krylov import FroudeKrylovHydrostatics, _fk_core, _fk_core_f32
@@ -55,12 +54,11 @@ from ship_gym.forces.viscous import ViscousRollDamping
 from ship_gym.hull import equilibrium, load_hull
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
+from ship_gym.typing import Precision, RowIntegratorName
 from ship_gym.waves.wave_field import WaveField
 
-__all__ = ["CompiledIntegrator", "CompiledShip", "Precision", "build_compiled_ship"]
+__all__ = ["CompiledShip", "Precision", "build_compiled_ship"]
 
-CompiledIntegrator = Literal["holloway", "rk4"]
-Precision = Literal["float64", "float32"]
 
 _TWO_PI = 2.0 * math.pi
 _HOLLOWAY_STARTUP = 2  # RK4 steps before μ-Taylor steps (as HollowayIntegrator/BatchSimulator)
@@ -112,7 +110,7 @@ def _diffraction_tables(model: Diffraction | None, wave_field: WaveField | None,
 def _rigid_terms(q, v, mass, weight, cog, held_angle, rot, total, qdot):  # pragma: no cover
     """R(φ, θ, ψ), gravity − Coriolis (body axes, about O) and η̇ = J(η) ν of one ship.
 
-    The arithmetic of ``ship_gym.dynamics.batch._ship_terms`` (one row); η̇ of a held angle
+    The arithmetic of ``ship_gym.engine.batch._ship_terms`` (one row); η̇ of a held angle
     is 0, and η̇'s angular rows are NaN where |cos θ| < 1e-9 (reported as a divergence).
     """
     cphi, sphi = math.cos(q[3]), math.sin(q[3])
@@ -634,7 +632,7 @@ class CompiledShip:
         Exactly the fast-path reference set: :class:`FroudeKrylovHydrostatics` (fast kernel),
         :class:`RadiationMemory` (``method="state_space"``, not lumped), optionally
         :class:`Diffraction` and :class:`ViscousRollDamping` (as built by
-        :func:`ship_gym.dynamics.ship.build_force_models`).
+        :func:`ship_gym.engine.ship.build_force_models`).
     wave_field : WaveField or None
         The incident sea (None: calm water).
     forward_speed : float
@@ -678,7 +676,7 @@ class CompiledShip:
         *,
         forward_speed: float = 0.0,
         dt: float = 0.05,
-        integrator: CompiledIntegrator = "holloway",
+        integrator: RowIntegratorName = "holloway",
         precision: Precision = "float64",
         free_dofs: tuple[bool, ...] | None = None,
         mu: NDArray | None = None,
@@ -955,8 +953,8 @@ def build_compiled_ship(
 ) -> CompiledShip:
     """A :class:`CompiledShip` of a setup at the free-floating equilibrium, heading north.
 
-    The counterpart of :func:`ship_gym.dynamics.ship.build_simulator` and
-    :func:`ship_gym.dynamics.batch.build_batch_simulator` (same models, same initial state)
+    The counterpart of :func:`ship_gym.engine.ship.build_simulator` and
+    :func:`ship_gym.engine.batch.build_batch_simulator` (same models, same initial state)
     for a setup whose force set is the reference one (radiation ``"state_space"``, or
     ``"2a"``/``"2b"`` with ``sea`` given; no control models, no added resistance, not lumped).
 
@@ -965,7 +963,7 @@ def build_compiled_ship(
     setup : ShipSetup
         ``integrator`` "holloway" or "rk4".
     wave_field : WaveField or None
-        The sea (:func:`ship_gym.dynamics.ship.wave_field_for`).
+        The sea (:func:`ship_gym.engine.ship.wave_field_for`).
     sea, wave_heading
         As for :func:`build_force_models` (not needed for state-space radiation).
     precision : {"float64", "float32"}

@@ -3,7 +3,7 @@
 :class:`BatchSimulator` advances N ships that share the hull, the hydrodynamic database and the
 force-model setup, but each has its own wave field (zero-padded to a common component count,
 :func:`ship_gym.waves.wave_field.stack_fields`), its own state, its own time and its own
-integrator history. The equations are those of :class:`ship_gym.dynamics.simulator.Simulator`
+integrator history. The equations are those of :class:`ship_gym.engine.simulator.Simulator`
 (Kring–Huang–Sclavounos form, instantaneous added mass on the left), written with a leading
 batch axis:
 
@@ -37,7 +37,7 @@ Integrators
 -----------
 ``"rk4"`` (4 evaluations per step) and ``"holloway"`` (Holloway's μ-Taylor scheme, 1 evaluation
 per step after a 2-step RK4 start-up; the arithmetic of
-:class:`ship_gym.dynamics.integrators.HollowayIntegrator` on batch arrays, with the same default
+:class:`ship_gym.engine.integrators.HollowayIntegrator` on batch arrays, with the same default
 μ as the single-ship simulator). Histories are per ship, so a ship that is reset restarts its own
 start-up while the others go on with one evaluation per step: the start-up ships' extra RK4
 stages are evaluated for those ships only. ``"abm"`` and Holloway's lumped mode are not
@@ -68,15 +68,15 @@ import math
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numba as nb
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ship_gym.conventions import ROLL, SURGE
-from ship_gym.dynamics.ship import Sea, ShipSetup, build_force_models
-from ship_gym.dynamics.simulator import left_hand_side
+from ship_gym.engine.ship import Sea, ShipSetup, build_force_models
+from ship_gym.engine.simulator import left_hand_side
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.forces.diffraction import Diffraction
 from ship_gym.forces.froude_krylov import (
@@ -91,7 +91,13 @@ from ship_gym.forces.viscous import ViscousRollDamping
 from ship_gym.hull import equilibrium, load_hull
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
+from ship_gym.typing import RowIntegratorName
 from ship_gym.waves.wave_field import WaveField, stack_fields
+
+EngineBackend = Literal["auto", "compiled", "numpy"]
+"""``"compiled"``: K steps of all ships in one numba call (:mod:`ship_gym.engine.compiled`);
+``"numpy"``: the reference path (one call per force model per evaluation); ``"auto"``:
+compiled when every model has a compiled version."""
 
 __all__ = [
     "BatchConstantRadiation",
@@ -99,7 +105,6 @@ __all__ = [
     "BatchDiffraction",
     "BatchForceModel",
     "BatchFroudeKrylov",
-    "BatchIntegratorName",
     "BatchSimulator",
     "BatchStateSpaceRadiation",
     "BatchViscousRoll",
@@ -108,7 +113,6 @@ __all__ = [
     "build_batch_simulator",
 ]
 
-BatchIntegratorName = Literal["rk4", "holloway"]
 
 _TWO_PI = 2.0 * math.pi
 _HOLLOWAY_STARTUP = 2  # RK4 steps before μ-Taylor steps (HollowayIntegrator, startup="rk4")
@@ -438,6 +442,10 @@ class BatchStateSpaceRadiation(BatchForceModel):
                 f"state-space shapes A {a.shape}, B {b.shape}, C {c.shape}, D {d.shape}; "
                 "expected (n, n), (n, 6), (6, n), (6, 6)"
             )
+        self.matrices = (a, b, c)
+        """The dense A (n, n), B (n, 6), C (6, n) of the fit."""
+        self.feedthrough = d
+        """D (6, 6) of the fit."""
         self._a = _csr(a)
         self._b = _csr(b)
         self._c = _csr(c)
@@ -452,7 +460,7 @@ class BatchStateSpaceRadiation(BatchForceModel):
         if model.method != "state_space" or model.state_space is None:
             raise NotImplementedError(
                 "BatchSimulator supports the state-space radiation memory only; the convolution "
-                "(reference path) runs in ship_gym.dynamics.simulator.Simulator"
+                "(reference path) runs in ship_gym.engine.simulator.Simulator"
             )
         if model.lumped:
             raise NotImplementedError(
@@ -481,7 +489,9 @@ class BatchConstantRadiation(BatchForceModel):
 
     def __init__(self, added_mass: NDArray, damping: NDArray) -> None:
         self.added_mass = np.asarray(added_mass, float)
-        self._bt = np.ascontiguousarray(np.asarray(damping, float).T)
+        self.damping = np.asarray(damping, float)
+        """B_c (6, 6) [N·s/m, …]."""
+        self._bt = np.ascontiguousarray(self.damping.T)
 
     @classmethod
     def from_model(cls, model: ConstantCoefficientRadiation) -> BatchConstantRadiation:
@@ -541,8 +551,10 @@ class BatchDiffraction(BatchForceModel):
         if not isinstance(template, Diffraction):
             raise ValueError(f"template must be a Diffraction model; got {type(template).__name__}")
         self.template = template
-        self._tol = template.heading_tolerance
-        self._encounter = template.frequency == "encounter"
+        self.tolerance = template.heading_tolerance
+        """Heading change [rad] beyond which a ship's cache is refreshed."""
+        self.encounter = template.frequency == "encounter"
+        """Whether X_D is looked up at the encounter frequency."""
         self.bind(1, 1)
 
     def bind(self, n_ships: int, n_comp: int) -> None:
@@ -550,6 +562,12 @@ class BatchDiffraction(BatchForceModel):
         self._u_ref = np.full(n_ships, np.nan)
         self._xd = np.zeros((n_ships, n_comp, 6), dtype=complex)
         self._dxd = np.zeros((n_ships, n_comp, 6), dtype=complex)
+
+    @property
+    def caches(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+        """The per-ship caches (X_D (N, n_c, 6), ∂X_D/∂ψ, reference heading (N,) [rad] and speed
+        (N,) [m/s]): the arrays themselves, shared with the compiled backend."""
+        return self._xd, self._dxd, self._psi_ref, self._u_ref
 
     def reset(self, ships: NDArray[np.int64], ctx: BatchContext) -> None:
         self._psi_ref[ships] = np.nan
@@ -568,7 +586,7 @@ class BatchDiffraction(BatchForceModel):
         psi = np.ascontiguousarray(ctx.eta[:, 5])
         stale = np.empty(ctx.n, dtype=np.bool_)
         _stale_headings(
-            ctx.ships, psi, self._psi_ref, self._u_ref, ctx.forward_speed, self._tol, stale
+            ctx.ships, psi, self._psi_ref, self._u_ref, ctx.forward_speed, self.tolerance, stale
         )
         if stale.any():
             rows = np.flatnonzero(stale)
@@ -681,13 +699,13 @@ def batch_force_models(models: Sequence[ForceModel]) -> list[BatchForceModel]:
 
     Froude–Krylov, state-space radiation memory, constant-coefficient radiation, diffraction and
     viscous roll damping are converted (their sea-independent data reused), and so are the
-    control models with a vectorised version in :mod:`ship_gym.dynamics.batch_control`
+    control models with a vectorised version in :mod:`ship_gym.engine.batch_control`
     (resistance, propeller, hull manoeuvring, rudder / fins / T-foil / flaps behind their
     servos, with the heading autopilot, fin or ride controller); a :class:`BatchForceModel` is
     passed through. Anything else (added resistance in waves) raises ``NotImplementedError``
     (wrap one instance per ship in :class:`PerShipForceModel`).
     """
-    from ship_gym.dynamics.batch_control import batch_control_model  # imports this module
+    from ship_gym.engine.batch_control import batch_control_model  # imports this module
 
     out: list[BatchForceModel] = []
     for m in models:
@@ -725,7 +743,7 @@ def _ship_terms(eta, nu, mass, weight, cog, rot, total, qdot):  # pragma: no cov
     :meth:`BatchSimulator.set_centre_of_gravity`); ``weight`` m g [N] shared.
 
     The arithmetic of :func:`ship_gym.kinematics.rotation_matrix`,
-    :func:`ship_gym.dynamics.rigid_body.gravity_force`, ``coriolis_force`` and ``kinematics``
+    :func:`ship_gym.engine.rigid_body.gravity_force`, ``coriolis_force`` and ``kinematics``
     fused in one loop; a row of η̇ is NaN where the Euler-rate matrix is singular (|cos θ| <
     1e-9), which the step reports as a divergence.
     """
@@ -842,7 +860,7 @@ def _holloway_rows(
     η̇ = J(η) ν) and ``_taylor2_update`` (first-order states); the per-ship histories (rows s
     of v1, v2, a1, a2, qd1, qd2, qdd1, qdd2, zd1, zd2; index 1 the newest) are shifted in place.
     After the RK4 start-up (``pending``) q̈ at the two previous instants comes from the q̇
-    history, as in :class:`ship_gym.dynamics.integrators.HollowayIntegrator`.
+    history, as in :class:`ship_gym.engine.integrators.HollowayIntegrator`.
     """  # fmt: skip
     c = 0.5 / dt
     h2 = 0.5 * dt * dt
@@ -960,14 +978,18 @@ class BatchSimulator:
         *,
         forward_speed: float = 0.0,
         dt: float = 0.05,
-        integrator: BatchIntegratorName = "rk4",
+        integrator: RowIntegratorName = "rk4",
         free_dofs: Sequence[bool] | None = None,
         mu: ArrayLike | None = None,
         max_abs_velocity: float = 100.0,
         initial_eta: ArrayLike | None = None,
         max_components: int | None = None,
         commands: Mapping[str, ArrayLike] | None = None,
+        backend: EngineBackend = "auto",
+        parallel: bool = False,
     ) -> None:
+        if backend not in ("auto", "compiled", "numpy"):
+            raise ValueError(f"backend must be 'auto', 'compiled' or 'numpy', got {backend!r}")
         if not (np.isfinite(dt) and dt > 0.0):
             raise ValueError(f"dt must be a positive time step [s], got {dt!r}")
         fields = list(wave_fields)
@@ -994,7 +1016,7 @@ class BatchSimulator:
             f.bind(self.n_ships, self._seas.n_comp)
         self.forward_speed = float(forward_speed)
         self.dt = float(dt)
-        self.integrator_name: BatchIntegratorName = integrator
+        self.integrator_name: RowIntegratorName = integrator
         self.max_abs_velocity = float(max_abs_velocity)
         self.free, self.mass_rb, a_lhs = left_hand_side(hull, self.forces, free_dofs)
         self.added_mass_lhs = a_lhs
@@ -1047,7 +1069,94 @@ class BatchSimulator:
         self._all = np.arange(n, dtype=np.int64)
         self._waves_all = self._waves_rows(self._all, True)
         self.timings: dict[str, float] | None = None
+        self.backend: EngineBackend = backend
+        self.parallel = bool(parallel)
+        self._compiled: Any = None
+        self._compiled_error: str | None = None
         self.reset()
+
+    # ------------------------------------------------------------------ compiled backend
+    @property
+    def compiled(self) -> bool:
+        """Whether :meth:`advance` runs the compiled loop (``backend`` and the models allow)."""
+        return self._compiled_backend() is not None
+
+    def _compiled_backend(self) -> Any:
+        if self.backend == "numpy":
+            return None
+        if self._compiled is None and self._compiled_error is None:
+            from ship_gym.engine.compiled import CompiledBackend
+
+            try:
+                self._compiled = CompiledBackend(self, parallel=self.parallel)
+            except NotImplementedError as exc:
+                self._compiled_error = str(exc)
+        if self._compiled is None and self.backend == "compiled":
+            raise NotImplementedError(
+                f"backend='compiled' is not available for these models: {self._compiled_error}"
+            )
+        return self._compiled
+
+    def advance(
+        self,
+        n_steps: int,
+        commands: Mapping[str, ArrayLike] | None = None,
+        *,
+        danger_roll: float = math.inf,
+    ) -> Any:
+        """Take ``n_steps`` physics steps with the commands held; return the task reductions.
+
+        With the compiled backend (:mod:`ship_gym.engine.compiled`) the K steps of all ships
+        run in one compiled call; otherwise :meth:`step` is called K times. Both return the
+        same :class:`~ship_gym.engine.compiled.StepReductions` (max |φ| including the start
+        state, Σφ², steps with |φ| > ``danger_roll``, ships diverged during the call).
+
+        Parameters
+        ----------
+        n_steps : int
+            Physics steps K (≥ 1).
+        commands : mapping, optional
+            Merged into :attr:`commands` first (as :meth:`step`).
+        danger_roll : float
+            Roll angle counted as dangerous [rad].
+        """
+        from ship_gym.engine.compiled import StepReductions
+
+        k = int(n_steps)
+        if k < 1:
+            raise ValueError(f"n_steps must be ≥ 1, got {n_steps!r}")
+        if commands is not None:
+            self.commands = {**self.commands, **commands}
+        backend = self._compiled_backend()
+        if backend is None:
+            max_abs = np.abs(self.eta[:, ROLL])
+            sum_sq = np.zeros(self.n_ships)
+            danger = np.zeros(self.n_ships, dtype=np.int64)
+            newly = np.zeros(self.n_ships, dtype=bool)
+            for _ in range(k):
+                newly |= self.step()
+                roll = self.eta[:, ROLL]
+                absr = np.abs(roll)
+                np.maximum(max_abs, absr, out=max_abs)
+                sum_sq += roll * roll
+                danger += absr > danger_roll
+            return StepReductions(max_abs, sum_sq, danger, newly)
+        ships = np.flatnonzero(~self.diverged)
+        if ships.size == 0:
+            z = np.zeros(self.n_ships)
+            return StepReductions(z, z.copy(), np.zeros(self.n_ships, np.int64), z > 0)
+        reductions, done = backend.advance(ships, k, danger_roll)
+        self.n_steps += done
+        self.n_evaluations += int(done.max()) * self.evaluations_per_step
+        for s in np.flatnonzero(reductions.diverged):
+            self.diverged[s] = True
+            self.divergence_messages[int(s)] = (
+                f"ship {s} diverged at t = {self.t[s] + self.dt:.3f} s (step "
+                f"{self.n_steps[s] + 1}): eta = {np.round(self.eta[s], 4).tolist()}, "
+                f"nu = {np.round(self.nu[s], 4).tolist()}; try a smaller dt (now {self.dt} s) "
+                f"or another integrator (now {self.integrator_name!r})"
+            )
+        return reductions
 
     # ------------------------------------------------------------------ properties
     @property
@@ -1490,6 +1599,26 @@ class BatchSimulator:
         self._generalised_force(ctx, rigid, self.z, breakdown)
         return breakdown
 
+    def actuator_angles(self, name: str) -> NDArray:
+        """(N,) servo angles [rad] of the actuated force model ``name`` (a copy).
+
+        Raises
+        ------
+        ValueError
+            If no force model of that name has a servo.
+        """
+        return self.actuator_model(name).angle.copy()
+
+    def actuator_model(self, name: str):
+        """The servo-driven batch force model named ``name``."""
+        for f in self.forces:
+            if f.name == name and getattr(f, "servo", None) is not None and hasattr(f, "angle"):
+                return f
+        raise ValueError(
+            f"no servo-driven force model named {name!r}; the models are "
+            f"{[f.name for f in self.forces]}"
+        )
+
     def elevation_at_ships(self) -> NDArray:
         """(N,) incident-wave elevation at each ship's O [m] (ζ = Re Σⱼ c'ⱼ)."""
         ctx, _, _ = self._context(self._all, True, self.t, self.eta, self.nu)
@@ -1508,13 +1637,15 @@ def build_batch_simulator(
     max_components: int | None = None,
     extra_forces: Sequence[BatchForceModel] = (),
     control: Literal["batch", "per_ship"] = "batch",
+    backend: EngineBackend = "auto",
+    parallel: bool = False,
 ) -> BatchSimulator:
     """A batch of ships of one setup at the free-floating equilibrium, heading north.
 
-    The batch counterpart of :func:`ship_gym.dynamics.ship.build_simulator`: ship s with
+    The batch counterpart of :func:`ship_gym.engine.ship.build_simulator`: ship s with
     ``wave_fields[s]`` behaves as ``build_simulator(setup, sea, wave_heading=…, rng=…)`` whose
     wave field is that one (make the fields with
-    :func:`ship_gym.dynamics.ship.wave_field_for`).
+    :func:`ship_gym.engine.ship.wave_field_for`).
 
     Parameters
     ----------
@@ -1533,17 +1664,22 @@ def build_batch_simulator(
     control : {"batch", "per_ship"}
         ``"batch"`` (default): the setup's control models (propulsion, manoeuvring, rudder,
         fins, T-foil, with their servos and controllers) by their vectorised versions
-        (:mod:`ship_gym.dynamics.batch_control`); ``"per_ship"``: each copied once per ship and
+        (:mod:`ship_gym.engine.batch_control`); ``"per_ship"``: each copied once per ship and
         wrapped in a :class:`PerShipForceModel` (a Python loop over ships; the reference the
         vectorised versions are tested against). Models without a batch version (added
         resistance in waves) are per ship in both cases.
+    backend : {"auto", "compiled", "numpy"}
+        Engine path of :meth:`BatchSimulator.advance` (``"auto"``: compiled when every model
+        has a compiled version).
+    parallel : bool
+        Spread the ships over numba's threads in the compiled loop.
 
     The initial commands are broadcast to (N,) arrays in :attr:`BatchSimulator.commands`. With
     propulsion at a positive speed, each ship's shaft speed is trimmed on its assembled surge
-    balance at its initial state, as :func:`ship_gym.dynamics.ship.build_simulator` does
-    (:func:`ship_gym.dynamics.batch_control.trim_batch_shaft_speed`).
+    balance at its initial state, as :func:`ship_gym.engine.ship.build_simulator` does
+    (:func:`ship_gym.engine.batch_control.trim_batch_shaft_speed`).
     """
-    from ship_gym.dynamics.batch_control import trim_batch_shaft_speed  # imports this module
+    from ship_gym.engine.batch_control import trim_batch_shaft_speed  # imports this module
     from ship_gym.forces.propeller import Propeller
 
     if control not in ("batch", "per_ship"):
@@ -1599,6 +1735,8 @@ def build_batch_simulator(
         initial_eta=np.array([0.0, 0.0, eq.heave, 0.0, eq.trim, 0.0]),
         max_components=max_components,
         commands={k: np.full(n_ships, v) if np.ndim(v) == 0 else v for k, v in commands.items()},
+        backend=backend,
+        parallel=parallel,
     )
     if setup.propulsion and setup.speed > 0.0:
         propeller = next(m for m in models if isinstance(m, Propeller))

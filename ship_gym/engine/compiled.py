@@ -1,0 +1,848 @@
+"""The compiled backend of the row engine: K physics steps of N ships in one numba call.
+
+:class:`CompiledBackend` takes the batch force models of a
+:class:`~ship_gym.engine.batch.BatchSimulator` and packs their data into records (named tuples
+of arrays: :class:`HullRecord`, :class:`WaveRecord`, :class:`RigidRecord`,
+:class:`RadiationRecord`, :class:`DiffractionRecord`, :class:`PropulsionRecord`,
+:class:`ManoeuvringRecord`, :class:`SurfacesRecord`); :func:`advance_ships` then runs, for
+every ship, up to K steps with the commands held, calling the **same** numba kernels the
+models use on rows:
+
+* Froude–Krylov + hydrostatics on the instantaneous wetted hull
+  (:func:`ship_gym.forces.froude_krylov._fk_core`, float64, or ``_fk_core_f32`` with float32
+  wave sums);
+* state-space radiation memory or Matusiak's constant coefficients (2a/2b);
+* diffraction with the per-ship heading cache refreshed inside the loop
+  (:func:`ship_gym.forces.diffraction.transfer_element`);
+* viscous roll damping; Holtrop–Mennen resistance
+  (:func:`ship_gym.forces.resistance.holtrop_total`); the B-series propeller
+  (:func:`ship_gym.engine.batch_control.propeller_force`); Clarke manoeuvring forces
+  (:func:`~ship_gym.engine.batch_control.manoeuvring_force`); rudder, fins, T-foil and flaps
+  (:func:`~ship_gym.engine.batch_control.surface_group_force`) behind their sampled servos
+  and feedback laws (:func:`ship_gym.control.actuators.actuator_target`,
+  :func:`~ship_gym.control.actuators.servo_angle`);
+* gravity, Coriolis–centripetal terms, kinematics; Holloway's μ-Taylor scheme after two RK4
+  start-up steps per ship, or RK4.
+
+Ships are independent in the loop (no reduction across ships reaches a state), so ship i of a
+batch of N evolves bit for bit as the same ship alone; with ``parallel=True`` the ships are
+spread over numba's threads. Per ship the call returns the task reductions over its K steps:
+max |φ|, Σ φ², the number of steps with |φ| above a threshold, and whether it diverged (the
+ship then keeps the state of the start of the failed step). The arithmetic is that of the
+numpy path of :class:`BatchSimulator` (the reference, ``backend="numpy"``); the wave phasors
+use the polynomial :func:`ship_gym.forces.fastmath.sincos_turns` instead of libm, so the two
+agree to rounding, not bit for bit (tested).
+
+Not compiled (the engine falls back to its numpy path): per-ship Python models
+(:class:`~ship_gym.engine.batch.PerShipForceModel`, e.g. added resistance in waves), a
+resistance curve that is not Holtrop–Mennen, ``Diffraction(above_range="raise")``, the
+``"propeller_thrust"`` commands of a rudder without a propeller.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numba as nb
+import numpy as np
+from numpy.typing import NDArray
+
+from ship_gym.control.actuators import actuator_target, servo_angle
+from ship_gym.engine.batch_control import (
+    BatchActuatedSurfaces,
+    BatchHullManoeuvring,
+    BatchPropeller,
+    BatchResistance,
+    manoeuvring_force,
+    propeller_force,
+    surface_group_force,
+)
+from ship_gym.engine.compiled_step import (
+    _diffraction,
+    _healthy,
+    _local_phasors,
+    _radiation,
+    _refresh_diffraction,
+    _rigid_terms,
+)
+from ship_gym.forces.froude_krylov import _fk_core, _fk_core_f32
+from ship_gym.forces.resistance import holtrop_total
+
+if TYPE_CHECKING:
+    from ship_gym.engine.batch import BatchSimulator
+
+__all__ = ["CompiledBackend", "StepReductions"]
+
+_TWO_PI = 2.0 * math.pi
+_HOLLOWAY_STARTUP = 2  # RK4 steps before μ-Taylor steps (as BatchSimulator)
+_MAX_GROUPS = 4  # rudder, fins, T-foil, flaps
+
+
+# ============================================================================================
+# records
+# ============================================================================================
+class HullRecord(NamedTuple):
+    """The Froude–Krylov kernel's hull layout (:class:`HullPanels`) and ρg [N/m³]."""
+
+    body: NDArray
+    tri: NDArray
+    tri_last: NDArray
+    tri_first: NDArray
+    spread: NDArray
+    weights: NDArray
+    areas: NDArray
+    rho_g: float
+    single: bool
+
+
+class WaveRecord(NamedTuple):
+    """(N, n_c) component arrays per ship in turns: aⱼ [m], ωⱼ/2π, εⱼ/2π, kⱼcosχⱼ/2π,
+    kⱼsinχⱼ/2π [turns/m], kⱼ/ln 2; float32 copies; (N,) ramp times [s]."""
+
+    amplitude: NDArray
+    omega_t: NDArray
+    phase_t: NDArray
+    ramp_time: NDArray
+    kxt: NDArray
+    kyt: NDArray
+    k2: NDArray
+    kxt32: NDArray
+    kyt32: NDArray
+    k232: NDArray
+
+
+class RigidRecord(NamedTuple):
+    """Per-ship M_RB about O (N, 6, 6), weight m g [N], G (N, 3), held angles (3,), and the
+    inverse of the free block of M_RB + A_lhs (N, 6, 6; zeros for held DOFs)."""
+
+    mass: NDArray
+    weight: float
+    cog: NDArray
+    held_angle: NDArray
+    m_inv: NDArray
+
+
+class RadiationRecord(NamedTuple):
+    """State-space A, B, C in CSR form and D (6, 6) (constant coefficients: no states, D = B_c)."""
+
+    speed: float
+    a_ptr: NDArray
+    a_idx: NDArray
+    a_val: NDArray
+    b_ptr: NDArray
+    b_idx: NDArray
+    b_val: NDArray
+    c_ptr: NDArray
+    c_idx: NDArray
+    c_val: NDArray
+    d_mat: NDArray
+    has_d: bool
+
+
+class DiffractionRecord(NamedTuple):
+    """The diffraction table and the per-ship caches (:class:`BatchDiffraction`'s arrays)."""
+
+    enabled: bool
+    table: NDArray
+    beta_ext: NDArray
+    omega_db: NDArray
+    direction: NDArray
+    omega: NDArray
+    wavenumber: NDArray
+    encounter: bool
+    step: float
+    tolerance: float
+    xd: NDArray
+    dxd: NDArray
+    psi_ref: NDArray
+    u_ref: NDArray
+    work: NDArray
+    count: NDArray
+
+
+class PropulsionRecord(NamedTuple):
+    """Holtrop–Mennen resistance, the propeller (:func:`propeller_force`'s arguments)."""
+
+    has_resistance: bool
+    holtrop: NDArray
+    has_propeller: bool
+    kt_c: NDArray
+    kq_c: NDArray
+    j0: float
+    diameter: float
+    rho_d4: float
+    one_minus_w: float
+    one_minus_t: float
+    eta_r: float
+    astern: float
+    z_p: float
+    y_p: float
+    roll_sign: float
+    shaft_col: int
+    viscous_b1: float
+    viscous_b2: float
+
+
+class ManoeuvringRecord(NamedTuple):
+    """:func:`manoeuvring_force`'s arguments."""
+
+    enabled: bool
+    c_yv: float
+    c_yr: float
+    c_nv: float
+    c_nr: float
+    cda: NDArray
+    x: NDArray
+    crossflow: bool
+    roll_lever: float
+
+
+class SurfacesRecord(NamedTuple):
+    """Surface groups behind servos: concatenated surface geometry (ptr (G+1,)), per-group
+    inflow and servo data (G,), and the actuators' per-ship states (G, N[, 6])."""
+
+    n_groups: int
+    ptr: NDArray
+    pos: NDArray
+    axis: NDArray
+    chord: NDArray
+    lead: NDArray
+    area: NDArray
+    span: NDArray
+    rho: NDArray
+    lift_slope: NDArray
+    stall: NDArray
+    transition: NDArray
+    cd0: NDArray
+    k_induced: NDArray
+    cn: NDArray
+    inflow: NDArray
+    wake: NDArray
+    gamma_v: NDArray
+    gamma_r: NDArray
+    prop_d: NDArray
+    prop_x: NDArray
+    thrust_mode: NDArray
+    c_th: NDArray
+    surface_limit: NDArray
+    max_angle: NDArray
+    max_rate: NDArray
+    lag: NDArray
+    kind: NDArray
+    gains: NDArray
+    ref_col: NDArray
+    delta: NDArray
+    integral: NDArray
+    t_step: NDArray
+    eta_step: NDArray
+    nu_step: NDArray
+
+
+class StepReductions(NamedTuple):
+    """What a task needs of K physics steps, per ship (N,).
+
+    Attributes
+    ----------
+    max_abs_roll : numpy.ndarray
+        max |φ| over the start state and the K new states [rad].
+    sum_sq_roll : numpy.ndarray
+        Σ φ² over the K new states [rad²].
+    danger_steps : numpy.ndarray
+        Number of the K new states with |φ| > the threshold.
+    diverged : numpy.ndarray
+        bool, the ships that diverged during the call.
+    """
+
+    max_abs_roll: NDArray
+    sum_sq_roll: NDArray
+    danger_steps: NDArray
+    diverged: NDArray
+
+
+def _c(array: Any, dtype: type = np.float64) -> NDArray:
+    return np.ascontiguousarray(array, dtype=dtype)
+
+
+def _csr(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
+    m = np.asarray(matrix, dtype=float)
+    rows, cols = np.nonzero(m)
+    ptr = np.zeros(m.shape[0] + 1, dtype=np.int64)
+    np.add.at(ptr, rows + 1, 1)
+    return _c(np.cumsum(ptr), np.int64), _c(cols, np.int64), _c(m[rows, cols])
+
+
+# ============================================================================================
+# kernels
+# ============================================================================================
+@nb.njit(cache=True, nogil=True)
+def _evaluate(
+    s, t, q, v, z, hull, waves, rigid, rad, diff, prop, man, surf, cmd, targets, work6,
+    local, mod, offset, acc, zdot, qdot,
+):  # fmt: skip  # pragma: no cover - compiled
+    """ν̇, ż and η̇ of ship s at (t, q, v, z); the actuators' targets are held."""
+    if diff.enabled:
+        psi = q[5]
+        ref = diff.psi_ref[s]
+        stale = np.isnan(ref) or diff.u_ref[s] != rad.speed
+        stale = stale or abs((psi - ref + math.pi) % _TWO_PI - math.pi) > diff.tolerance
+        if stale:
+            dtab = (
+                diff.table, diff.beta_ext, diff.omega_db, diff.direction[s], diff.omega[s],
+                diff.wavenumber[s], diff.encounter, diff.step, False, diff.work, diff.count,
+            )  # fmt: skip
+            ref2 = np.empty(2)
+            _refresh_diffraction(psi, rad.speed, dtab, diff.xd[s], diff.dxd[s], ref2)
+            diff.psi_ref[s] = ref2[0]
+            diff.u_ref[s] = ref2[1]
+    rot = np.empty((3, 3))
+    total = np.empty(6)
+    _rigid_terms(
+        q, v, rigid.mass[s], rigid.weight, rigid.cog[s], rigid.held_angle, rot, total, qdot
+    )
+    crest = _local_phasors(
+        t, q[0], q[1], waves.amplitude[s], waves.omega_t[s], waves.phase_t[s],
+        waves.ramp_time[s], waves.kxt[s], waves.kyt[s], mod, offset, local,
+    )  # fmt: skip
+    fe = np.zeros(6)
+    if hull.single:
+        _fk_core_f32(
+            hull.body, hull.tri, hull.tri_last, hull.tri_first, hull.spread, hull.weights,
+            hull.areas, rot, q[2], waves.kxt32[s], waves.kyt32[s], waves.k232[s],
+            mod.astype(np.float32), offset.astype(np.float32), crest, hull.rho_g, fe,
+        )  # fmt: skip
+    else:
+        _fk_core(
+            hull.body, hull.tri, hull.tri_last, hull.tri_first, hull.spread, hull.weights,
+            hull.areas, rot, q[2], waves.kxt[s], waves.kyt[s], waves.k2[s], mod, offset, crest,
+            hull.rho_g, fe,
+        )  # fmt: skip
+    for i in range(3):
+        total[i] += rot[0, i] * fe[0] + rot[1, i] * fe[1] + rot[2, i] * fe[2]
+    for i in range(3):
+        total[3 + i] += rot[0, i] * fe[3] + rot[1, i] * fe[4] + rot[2, i] * fe[5]
+    _radiation(
+        v, z, rad.speed, rad.a_ptr, rad.a_idx, rad.a_val, rad.b_ptr, rad.b_idx, rad.b_val,
+        rad.c_ptr, rad.c_idx, rad.c_val, rad.d_mat, rad.has_d, total, zdot,
+    )  # fmt: skip
+    if diff.enabled:
+        _diffraction(q[5], local, diff.xd[s], diff.dxd[s], diff.psi_ref[s : s + 1], total)
+    p_roll = v[3]
+    total[3] += -(prop.viscous_b1 * p_roll + prop.viscous_b2 * abs(p_roll) * p_roll)
+    # control forces, in the order of the batch models (resistance, propeller, hull, surfaces)
+    if prop.has_resistance and v[0] != 0.0:
+        total[0] += -math.copysign(holtrop_total(prop.holtrop, abs(v[0])), v[0])
+    thrust = 0.0
+    if prop.has_propeller:
+        thrust = propeller_force(
+            v[0], cmd[s, prop.shaft_col], prop.kt_c, prop.kq_c, prop.j0, prop.diameter,
+            prop.rho_d4, prop.one_minus_w, prop.one_minus_t, prop.eta_r, prop.astern, prop.z_p,
+            prop.y_p, prop.roll_sign, work6,
+        )  # fmt: skip
+        for i in range(6):
+            total[i] += work6[i]
+    if man.enabled:
+        manoeuvring_force(
+            v, man.c_yv, man.c_yr, man.c_nv, man.c_nr, man.cda, man.x, man.crossflow,
+            man.roll_lever, work6,
+        )  # fmt: skip
+        for i in range(6):
+            total[i] += work6[i]
+    for g in range(surf.n_groups):
+        angle = servo_angle(
+            surf.delta[g, s], targets[g], t - surf.t_step[g, s], surf.max_rate[g], surf.lag[g]
+        )
+        lim = surf.surface_limit[g]
+        angle = min(max(angle, -lim), lim)
+        mode = surf.thrust_mode[g]
+        th = thrust if mode == 1 else surf.c_th[g]
+        surface_group_force(
+            v, angle, surf.inflow[g], surf.wake[g], surf.gamma_v[g], surf.gamma_r[g],
+            surf.prop_d[g], surf.prop_x[g], mode, th, surf.pos, surf.axis, surf.chord,
+            surf.lead, surf.area, surf.span, surf.rho, surf.lift_slope, surf.stall,
+            surf.transition, surf.cd0, surf.k_induced, surf.cn, surf.ptr[g], surf.ptr[g + 1],
+            work6,
+        )  # fmt: skip
+        for i in range(6):
+            total[i] += work6[i]
+    m_inv = rigid.m_inv[s]
+    for i in range(6):
+        a = 0.0
+        for j in range(6):
+            a += m_inv[i, j] * total[j]
+        acc[i] = a
+
+
+@nb.njit(cache=True, nogil=True)
+def _advance_ship(
+    s, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending, hist,
+    hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum, red_danger,
+):  # fmt: skip  # pragma: no cover - compiled
+    """Up to n_steps steps of ship s; returns the number of steps completed (fewer: it
+    diverged, the state of that step's start kept). ``hist``: the Holloway histories (v1, v2,
+    a1, a2, qd1, qd2, qdd1, qdd2, zd1, zd2), rows per ship."""
+    v1, v2, a1, a2, qd1, qd2, qdd1, qdd2, zd1, zd2 = hist
+    nz = z.shape[1]
+    n_c = waves.amplitude.shape[1]
+    q, v, zz = eta[s], nu[s], z[s]
+    qs, vs, zs = np.empty(6), np.empty(6), np.empty(nz)
+    q_new, v_new, z_new = np.empty(6), np.empty(6), np.empty(nz)
+    a_c, d_c, g_c = np.empty(6), np.empty(6), np.empty(nz)
+    a2s, d2, g2 = np.empty(6), np.empty(6), np.empty(nz)
+    a3s, d3, g3 = np.empty(6), np.empty(6), np.empty(nz)
+    a4s, d4, g4 = np.empty(6), np.empty(6), np.empty(nz)
+    local = np.empty(n_c, dtype=np.complex128)
+    mod, offset = np.empty(n_c), np.empty(n_c)
+    work6 = np.empty(6)
+    n_g = surf.n_groups
+    targets = np.zeros(_MAX_GROUPS)
+    rates = np.zeros(_MAX_GROUPS)
+    c = 0.5 / dt
+    h2 = 0.5 * dt * dt
+    h3 = dt * dt * dt / 6.0
+    roll_max = abs(q[3])
+    for step in range(n_steps):
+        t = t_arr[s]
+        for g in range(n_g):  # commands sampled at the step start, held over the step
+            targets[g], rates[g] = actuator_target(
+                surf.kind[g], surf.gains[g], q, v, surf.integral[g, s],
+                cmd[s, surf.ref_col[g]], surf.max_angle[g],
+            )  # fmt: skip
+        _evaluate(
+            s, t, q, v, zz, hull, waves, rigid, rad, diff, prop, man, surf, cmd, targets,
+            work6, local, mod, offset, a_c, g_c, d_c,
+        )  # fmt: skip
+        if use_rk4 or k_count[s] < _HOLLOWAY_STARTUP:
+            hh = 0.5 * dt
+            for stage in range(3):
+                if stage == 0:
+                    ca, ga, da, tt, cs = a_c, g_c, d_c, t + hh, hh
+                    ao, go, do = a2s, g2, d2
+                elif stage == 1:
+                    ca, ga, da, tt, cs = a2s, g2, d2, t + hh, hh
+                    ao, go, do = a3s, g3, d3
+                else:
+                    ca, ga, da, tt, cs = a3s, g3, d3, t + dt, dt
+                    ao, go, do = a4s, g4, d4
+                for i in range(6):
+                    qs[i] = q[i] + cs * da[i]
+                    vs[i] = v[i] + cs * ca[i]
+                for i in range(nz):
+                    zs[i] = zz[i] + cs * ga[i]
+                _evaluate(
+                    s, tt, qs, vs, zs, hull, waves, rigid, rad, diff, prop, man, surf, cmd,
+                    targets, work6, local, mod, offset, ao, go, do,
+                )  # fmt: skip
+            c6 = dt / 6.0
+            for i in range(6):
+                q_new[i] = q[i] + c6 * (d_c[i] + 2.0 * (d2[i] + d3[i]) + d4[i])
+                v_new[i] = v[i] + c6 * (a_c[i] + 2.0 * (a2s[i] + a3s[i]) + a4s[i])
+            for i in range(nz):
+                z_new[i] = zz[i] + c6 * (g_c[i] + 2.0 * (g2[i] + g3[i]) + g4[i])
+            if not _healthy(q_new, v_new, z_new, v_max):
+                red_max[s] = max(red_max[s], roll_max)
+                return step
+            if not use_rk4:  # start-up history (BatchSimulator._push_startup)
+                for i in range(6):
+                    v2[s, i] = v1[s, i]
+                    v1[s, i] = v[i]
+                    a2[s, i] = a1[s, i]
+                    a1[s, i] = a_c[i]
+                    qd2[s, i] = qd1[s, i]
+                    qd1[s, i] = d_c[i]
+                for i in range(nz):
+                    zd2[s, i] = zd1[s, i]
+                    zd1[s, i] = g_c[i]
+                pending[s] = True
+        else:
+            # Holloway's μ-Taylor step (eq. 4, 6–9), history shifted only for a healthy step
+            for i in range(6):
+                ae = (3.0 * v[i] - 4.0 * v1[s, i] + v2[s, i]) * c  # eq. 6
+                a = mu[i] * a_c[i] + (1.0 - mu[i]) * ae  # eq. 4
+                jerk = (3.0 * a - 4.0 * a1[s, i] + a2[s, i]) * c  # eq. 7
+                v_new[i] = v[i] + dt * a + h2 * jerk  # eq. 8
+                a2s[i] = a
+            if pending[s]:
+                for i in range(6):
+                    d2[i] = (-3.0 * qd2[s, i] + 4.0 * qd1[s, i] - d_c[i]) * c
+                    d3[i] = (d_c[i] - qd2[s, i]) * c
+            else:
+                for i in range(6):
+                    d2[i] = qdd2[s, i]
+                    d3[i] = qdd1[s, i]
+            for i in range(6):
+                qdd = (3.0 * d_c[i] - 4.0 * qd1[s, i] + qd2[s, i]) * c
+                qddd = (3.0 * qdd - 4.0 * d3[i] + d2[i]) * c
+                q_new[i] = q[i] + dt * d_c[i] + h2 * qdd + h3 * qddd  # eq. 9
+                d4[i] = qdd
+            for i in range(nz):
+                zdd = (3.0 * g_c[i] - 4.0 * zd1[s, i] + zd2[s, i]) * c
+                z_new[i] = zz[i] + dt * g_c[i] + h2 * zdd
+            if not _healthy(q_new, v_new, z_new, v_max):
+                red_max[s] = max(red_max[s], roll_max)
+                return step
+            for i in range(6):
+                a2[s, i] = a1[s, i]
+                a1[s, i] = a2s[i]
+                v2[s, i] = v1[s, i]
+                v1[s, i] = v[i]
+                qd2[s, i] = qd1[s, i]
+                qd1[s, i] = d_c[i]
+                qdd2[s, i] = d3[i]
+                qdd1[s, i] = d4[i]
+            for i in range(nz):
+                zd2[s, i] = zd1[s, i]
+                zd1[s, i] = g_c[i]
+            pending[s] = False
+        t_new = t + dt
+        for g in range(n_g):  # the actuators' accepted step (actuator_commit_rows)
+            elapsed = t_new - surf.t_step[g, s]
+            surf.delta[g, s] = servo_angle(
+                surf.delta[g, s], targets[g], elapsed, surf.max_rate[g], surf.lag[g]
+            )
+            surf.integral[g, s] += elapsed * rates[g]
+            surf.t_step[g, s] = t_new
+            for i in range(6):
+                surf.eta_step[g, s, i] = q_new[i]
+                surf.nu_step[g, s, i] = v_new[i]
+        for i in range(6):
+            q[i] = q_new[i]
+            v[i] = v_new[i]
+        for i in range(nz):
+            zz[i] = z_new[i]
+        t_arr[s] = t_new
+        k_count[s] += 1
+        roll = q[3]
+        ar = abs(roll)
+        roll_max = max(roll_max, ar)
+        red_sum[s] += roll * roll
+        if ar > danger:
+            red_danger[s] += 1
+    red_max[s] = max(red_max[s], roll_max)
+    return n_steps
+
+
+@nb.njit(cache=True, nogil=True)
+def _advance_serial(
+    ships, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending, hist,
+    hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum, red_danger, done,
+):  # fmt: skip  # pragma: no cover - compiled
+    for r in range(ships.shape[0]):
+        s = ships[r]
+        done[s] = _advance_ship(
+            s, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending,
+            hist, hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum,
+            red_danger,
+        )  # fmt: skip
+
+
+@nb.njit(cache=True, nogil=True, parallel=True)
+def _advance_parallel(
+    ships, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending, hist,
+    hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum, red_danger, done,
+):  # fmt: skip  # pragma: no cover - compiled
+    for r in nb.prange(ships.shape[0]):
+        s = ships[r]
+        done[s] = _advance_ship(
+            s, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending,
+            hist, hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum,
+            red_danger,
+        )  # fmt: skip
+
+
+# ============================================================================================
+# the backend
+# ============================================================================================
+class CompiledBackend:
+    """The compiled loop over a :class:`BatchSimulator`'s ships (module docstring).
+
+    Built by :meth:`BatchSimulator.compiled_backend`; shares the simulator's state arrays, the
+    diffraction caches of its :class:`BatchDiffraction` and the actuator states of its
+    :class:`BatchActuatedSurfaces` (views), so the numpy path and this one can be mixed.
+
+    Raises
+    ------
+    NotImplementedError
+        From :meth:`check` when a model has no compiled version (the message names it).
+    """
+
+    def __init__(self, sim: BatchSimulator, *, parallel: bool = False) -> None:
+        from ship_gym.engine.batch import (
+            BatchConstantRadiation,
+            BatchDiffraction,
+            BatchFroudeKrylov,
+            BatchStateSpaceRadiation,
+            BatchViscousRoll,
+        )
+
+        self.check(sim)
+        self.sim = sim
+        self.parallel = bool(parallel)
+        n = sim.n_ships
+        fk = next(f for f in sim.forces if isinstance(f, BatchFroudeKrylov))
+        lay = fk.panels._layout
+        self.hull = HullRecord(
+            _c(lay.body), _c(lay.triangles, np.int64), _c(lay.tri_last, np.int64),
+            _c(lay.tri_first, np.int64), _c(lay.spread), _c(lay.weights), _c(lay.areas),
+            float(fk.rho * fk.g), fk.method == "fast32",
+        )  # fmt: skip
+        radiation_kinds = BatchStateSpaceRadiation | BatchConstantRadiation
+        rad_model = next((f for f in sim.forces if isinstance(f, radiation_kinds)), None)
+        if isinstance(rad_model, BatchStateSpaceRadiation):
+            a, b, c = rad_model.matrices
+            d = rad_model.feedthrough
+        else:
+            a, b, c = np.zeros((0, 0)), np.zeros((0, 6)), np.zeros((6, 0))
+            d = np.zeros((6, 6)) if rad_model is None else rad_model.damping
+        self.radiation = RadiationRecord(
+            sim.forward_speed, *_csr(a), *_csr(b), *_csr(c), _c(d), bool(np.any(d != 0.0))
+        )
+        diff = next((f for f in sim.forces if isinstance(f, BatchDiffraction)), None)
+        n_c = sim.n_components
+        if diff is not None:
+            table, beta = diff.template.interpolation_table()
+            tab = (_c(table, np.complex128), _c(beta), _c(diff.template.omega))
+            enc, h, tol = diff.encounter, diff.template.heading_step, diff.tolerance
+            xd, dxd, psi_ref, u_ref = diff.caches
+        else:
+            tab = (np.zeros((2, 2, 6), np.complex128), np.arange(2.0), np.arange(1.0, 3.0))
+            enc, h, tol = False, 1e-4, 0.0
+            xd = np.zeros((n, n_c, 6), np.complex128)
+            dxd, psi_ref, u_ref = xd.copy(), np.full(n, np.nan), np.full(n, np.nan)
+        self._diff_static = (diff is not None, *tab)
+        self._diff_rest = (enc, float(h), float(tol), xd, dxd, psi_ref, u_ref)
+        self._diff_work = (np.zeros((3, n_c, 6), np.complex128), np.zeros(1, np.int64))
+        visc = next((f for f in sim.forces if isinstance(f, BatchViscousRoll)), None)
+        res = next((f for f in sim.forces if isinstance(f, BatchResistance)), None)
+        pro = next((f for f in sim.forces if isinstance(f, BatchPropeller)), None)
+        self._command_keys: list[str] = []
+        self._command_defaults: list[Any] = []
+        shaft_col = 0
+        if pro is not None:
+            shaft_col = self._column("shaft_speed", pro.default_shaft_speed)
+        kt = (pro.params[:2]) if pro is not None else (np.zeros(4), np.zeros(4))
+        scal = pro.params[2:] if pro is not None else (1.0,) * 10
+        self.propulsion = PropulsionRecord(
+            res is not None, _c(res.kernel_parameters() if res else np.zeros(1)),
+            pro is not None, _c(kt[0]), _c(kt[1]), *(float(x) for x in scal), shaft_col,
+            float(visc.b1) if visc else 0.0, float(visc.b2) if visc else 0.0,
+        )  # fmt: skip
+        man = next((f for f in sim.forces if isinstance(f, BatchHullManoeuvring)), None)
+        if man is not None:
+            p = man.params
+            self.manoeuvring = ManoeuvringRecord(
+                True, *(float(x) for x in p[:4]), _c(p[4]), _c(p[5]), bool(p[6]), float(p[7])
+            )
+        else:
+            self.manoeuvring = ManoeuvringRecord(
+                False, 0.0, 0.0, 0.0, 0.0, np.zeros(0), np.zeros(0), False, 0.0
+            )
+        self.surfaces = self._surfaces(sim, pro is not None)
+
+    # ------------------------------------------------------------------ set-up
+    @staticmethod
+    def check(sim: BatchSimulator) -> None:
+        """Raise NotImplementedError naming the first model without a compiled version."""
+        from ship_gym.engine.batch import (
+            BatchConstantRadiation,
+            BatchDiffraction,
+            BatchFroudeKrylov,
+            BatchStateSpaceRadiation,
+            BatchViscousRoll,
+        )
+
+        counts: dict[type, int] = {}
+        groups = 0
+        for f in sim.forces:
+            kind = type(f)
+            counts[kind] = counts.get(kind, 0) + 1
+            if isinstance(f, BatchFroudeKrylov):
+                if f.method == "reference":
+                    raise NotImplementedError("the reference Froude–Krylov kernel is numpy only")
+            elif isinstance(f, BatchDiffraction):
+                if f.template.above_range == "raise":
+                    raise NotImplementedError("Diffraction(above_range='raise') is numpy only")
+            elif isinstance(f, BatchResistance):
+                f.kernel_parameters()  # raises for a curve that is not Holtrop–Mennen
+            elif isinstance(f, BatchActuatedSurfaces):
+                if f.servo is None:
+                    raise NotImplementedError(f"the bare surface group {f.name!r} is numpy only")
+                groups += 1
+            elif not isinstance(
+                f, BatchStateSpaceRadiation | BatchConstantRadiation | BatchViscousRoll
+                | BatchPropeller | BatchHullManoeuvring,
+            ):  # fmt: skip
+                raise NotImplementedError(
+                    f"force model {f.name!r} ({type(f).__name__}) has no compiled version"
+                )
+        if counts.get(BatchFroudeKrylov, 0) != 1:
+            raise NotImplementedError("the compiled loop needs exactly one Froude–Krylov model")
+        for kind, k in counts.items():
+            if k > 1 and kind is not BatchActuatedSurfaces:
+                raise NotImplementedError(f"more than one {kind.__name__} model")
+        if groups > _MAX_GROUPS:
+            raise NotImplementedError(f"more than {_MAX_GROUPS} actuated surface groups")
+        radiation_states = sum(
+            int(f.n_states) for f in sim.forces if isinstance(f, BatchStateSpaceRadiation)
+        )
+        if radiation_states != sim.n_states:
+            raise NotImplementedError("only the radiation memory may have ODE states")
+
+    def _column(self, key: str, default: Any) -> int:
+        self._command_keys.append(key)
+        self._command_defaults.append(default)
+        return len(self._command_keys) - 1
+
+    def _surfaces(self, sim: BatchSimulator, has_propeller: bool) -> SurfacesRecord:
+        groups = [f for f in sim.forces if isinstance(f, BatchActuatedSurfaces)]
+        n, g_n = sim.n_ships, len(groups)
+        geo = [np.concatenate([g._geometry[i] for g in groups]) if groups else None
+               for i in range(13)]  # fmt: skip
+        shapes = ((0, 3),) * 4 + ((0,),) * 9
+        geo = [_c(x) if x is not None else np.zeros(sh) for x, sh in zip(geo, shapes, strict=True)]
+        ptr = np.zeros(g_n + 1, dtype=np.int64)
+        for i, g in enumerate(groups):
+            ptr[i + 1] = ptr[i] + g._geometry[0].shape[0]
+        scal: dict[str, list] = {k: [] for k in (
+            "inflow", "wake", "gamma_v", "gamma_r", "prop_d", "prop_x", "thrust_mode", "c_th",
+            "surface_limit", "max_angle", "max_rate", "lag", "kind", "gains", "ref_col",
+        )}  # fmt: skip
+        states = {k: np.zeros((max(g_n, 1), n)) for k in ("delta", "integral", "t_step")}
+        for k in ("eta_step", "nu_step"):
+            states[k] = np.zeros((max(g_n, 1), n, 6))
+        for i, g in enumerate(groups):
+            scal["inflow"].append(g._inflow)
+            scal["wake"].append(g._wake)
+            scal["gamma_v"].append(g._gamma[0])
+            scal["gamma_r"].append(g._gamma[1])
+            scal["prop_d"].append(g._prop[0])
+            scal["prop_x"].append(g._prop[1])
+            mode, c_th = 0, 0.0
+            if g._rudder is not None:
+                if has_propeller:
+                    mode = 1
+                elif g._rudder.thrust_coefficient is not None:
+                    mode, c_th = 2, float(g._rudder.thrust_coefficient)
+            scal["thrust_mode"].append(mode)
+            scal["c_th"].append(c_th)
+            scal["surface_limit"].append(g._surface_limit)
+            scal["max_angle"].append(g.servo.max_angle)
+            scal["max_rate"].append(g.servo.max_rate)
+            scal["lag"].append(g.servo.lag)
+            scal["kind"].append(g.kind)
+            scal["gains"].append(g.gains)
+            if g.kind == 1:
+                key = g.controller.heading_key
+                scal["ref_col"].append(self._column(key, ("initial_heading", g)))
+            elif g.kind == 0:
+                scal["ref_col"].append(self._column(g.command_key, 0.0))
+            else:
+                scal["ref_col"].append(self._column(f"{g.name}_unused", 0.0))
+            for k in ("delta", "integral", "t_step", "eta_step", "nu_step"):  # share the rows
+                states[k][i] = getattr(g.states, k)
+                setattr(g.states, k, states[k][i])
+        if not self._command_keys:
+            self._column("unused", 0.0)
+        ints = {"inflow", "thrust_mode", "kind", "ref_col"}
+        arrays = {
+            k: _c(v, np.int64) if k in ints else _c(v)
+            for k, v in scal.items() if k != "gains"
+        }  # fmt: skip
+        for k in ints:
+            if g_n == 0:
+                arrays[k] = np.zeros(1, np.int64)
+        for k in arrays:
+            if arrays[k].shape[0] == 0:
+                arrays[k] = np.zeros(1)
+        gains = _c(scal["gains"]) if g_n else np.zeros((1, 4))
+        return SurfacesRecord(
+            g_n, ptr, *geo, arrays["inflow"], arrays["wake"], arrays["gamma_v"],
+            arrays["gamma_r"], arrays["prop_d"], arrays["prop_x"], arrays["thrust_mode"],
+            arrays["c_th"], arrays["surface_limit"], arrays["max_angle"], arrays["max_rate"],
+            arrays["lag"], arrays["kind"], gains, arrays["ref_col"], *states.values(),
+        )  # fmt: skip
+
+    def _command_matrix(self) -> NDArray:
+        """(N, n_cmd) the commands in force (arrays over N or scalars; defaults filled)."""
+        sim = self.sim
+        out = np.empty((sim.n_ships, len(self._command_keys)))
+        for j, (key, default) in enumerate(
+            zip(self._command_keys, self._command_defaults, strict=True)
+        ):
+            value = sim.commands.get(key, None)
+            if value is None:
+                if isinstance(default, tuple):  # the autopilot's heading at reset
+                    value = default[1].states.initial_heading
+                elif default is None:
+                    raise ValueError(
+                        f"no {key!r} command and no default (e.g. the propeller's shaft speed)"
+                    )
+                else:
+                    value = default
+            arr = np.asarray(value, dtype=float)
+            if arr.ndim and arr.shape != (sim.n_ships,):
+                raise ValueError(
+                    f"commands[{key!r}] must be a scalar or an (N,) array over the ships; got "
+                    f"shape {arr.shape}"
+                )
+            if not np.all(np.isfinite(arr)):
+                raise ValueError(f"commands[{key!r}] must be finite; got {value!r}")
+            out[:, j] = arr
+        return out
+
+    def _records(self) -> tuple:
+        sim = self.sim
+        seas = sim._seas
+        kxt = seas.kx / _TWO_PI
+        kyt = seas.ky / _TWO_PI
+        k2 = seas.wavenumber / math.log(2.0)
+        waves = WaveRecord(
+            _c(seas.amplitude), _c(seas.omega / _TWO_PI), _c(seas.phase / _TWO_PI),
+            _c(seas.ramp_time), _c(kxt), _c(kyt), _c(k2), _c(kxt, np.float32),
+            _c(kyt, np.float32), _c(k2, np.float32),
+        )  # fmt: skip
+        idx = sim._free_idx
+        m_inv = np.zeros((sim.n_ships, 6, 6))
+        m_inv[:, idx[:, None], idx[None, :]] = np.transpose(sim._ship_m_inv_t, (0, 2, 1))
+        rigid = RigidRecord(
+            _c(sim._ship_mass_rb), float(sim._weight), _c(sim._ship_cog),
+            _c(sim._held_angles, np.bool_), _c(m_inv),
+        )  # fmt: skip
+        en, tab, beta, omega_db = self._diff_static
+        diff = DiffractionRecord(
+            en, tab, beta, omega_db, _c(seas.direction), _c(seas.omega), _c(seas.wavenumber),
+            *self._diff_rest, *self._diff_work,
+        )  # fmt: skip
+        return waves, rigid, diff
+
+    # ------------------------------------------------------------------ running
+    def advance(
+        self, ships: NDArray, n_steps: int, danger: float
+    ) -> tuple[StepReductions, NDArray]:
+        """Up to ``n_steps`` steps of each of ``ships`` with the commands held.
+
+        Returns the reductions over the steps (arrays over all N; zeros for ships not run) and
+        the (N,) number of steps each ship completed (fewer than ``n_steps``: it diverged).
+        """
+        sim = self.sim
+        n = sim.n_ships
+        waves, rigid, diff = self._records()
+        cmd = self._command_matrix()
+        red_max = np.zeros(n)
+        red_sum = np.zeros(n)
+        red_danger = np.zeros(n, dtype=np.int64)
+        done = np.zeros(n, dtype=np.int64)
+        hist = (
+            sim._v1, sim._v2, sim._a1, sim._a2, sim._qd1, sim._qd2, sim._qdd1, sim._qdd2,
+            sim._zd1, sim._zd2,
+        )  # fmt: skip
+        run = _advance_parallel if self.parallel else _advance_serial
+        run(
+            _c(ships, np.int64), int(n_steps), sim.integrator_name == "rk4", sim.dt, sim.mu,
+            sim.max_abs_velocity, float(danger), sim.t, sim.eta, sim.nu, sim.z, sim._k,
+            sim._pending, hist, self.hull, waves, rigid, self.radiation, diff, self.propulsion,
+            self.manoeuvring, self.surfaces, cmd, red_max, red_sum, red_danger, done,
+        )  # fmt: skip
+        ran = np.zeros(n, dtype=bool)
+        ran[ships] = True
+        return StepReductions(red_max, red_sum, red_danger, ran & (done < n_steps)), done
