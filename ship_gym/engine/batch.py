@@ -1069,6 +1069,8 @@ class BatchSimulator:
         self._all = np.arange(n, dtype=np.int64)
         self._waves_all = self._waves_rows(self._all, True)
         self.timings: dict[str, float] | None = None
+        self.layout_version = 0
+        """Incremented when a ship's sea or loading changes (the compiled records follow)."""
         self.backend: EngineBackend = backend
         self.parallel = bool(parallel)
         self._compiled: Any = None
@@ -1299,6 +1301,7 @@ class BatchSimulator:
                 raise ValueError(f"wave_fields must hold {n} fields (one per ship), got {len(wf)}")
             for s, f in zip(ships, wf, strict=True):
                 self._seas.replace(int(s), f)
+            self.layout_version += 1
         self.t[ships] = new_t
         self.eta[ships] = new_eta
         self.nu[ships] = new_nu
@@ -1355,6 +1358,7 @@ class BatchSimulator:
             lhs = (m_rb + self.added_mass_lhs)[np.ix_(idx, idx)]
             self._ship_m_inv_t[s] = np.linalg.inv(lhs).T
         self._uniform_loading = bool(np.all(self._ship_cog == self._cog))
+        self.layout_version += 1
 
     @property
     def centre_of_gravity(self) -> NDArray:

@@ -638,6 +638,9 @@ class CompiledBackend:
                 False, 0.0, 0.0, 0.0, 0.0, np.zeros(0), np.zeros(0), False, 0.0
             )
         self.surfaces = self._surfaces(sim, pro is not None)
+        self._records_version = -1
+        self._records_cache: tuple = ()
+        self._entry: dict[bool, Any] = {}
 
     # ------------------------------------------------------------------ set-up
     @staticmethod
@@ -791,6 +794,13 @@ class CompiledBackend:
         return out
 
     def _records(self) -> tuple:
+        """(waves, rigid, diffraction) records, rebuilt when a sea or a loading changed."""
+        if self._records_version != self.sim.layout_version:
+            self._records_cache = self._build_records()
+            self._records_version = self.sim.layout_version
+        return self._records_cache
+
+    def _build_records(self) -> tuple:
         sim = self.sim
         seas = sim._seas
         kxt = seas.kx / _TWO_PI
@@ -816,6 +826,32 @@ class CompiledBackend:
         return waves, rigid, diff
 
     # ------------------------------------------------------------------ running
+    def _call(self, args: tuple) -> None:
+        """Call the compiled loop; after the first call, its compiled entry point directly.
+
+        numba's dispatcher resolves the types of the ≈ 150 record fields at every call
+        (≈ 20 µs); the entry point of the specialisation it chose skips that. Should the
+        argument types ever change (another array layout), the dispatcher is used again.
+        """
+        run = _advance_parallel if self.parallel else _advance_serial
+        entry = self._entry.get(self.parallel)
+        if entry is not None:
+            try:
+                entry(*args)
+                return
+            except TypeError:
+                self._entry.pop(self.parallel, None)
+        run(*args)
+        if len(run.signatures) == 1 or self._entry.get(self.parallel) is None:
+            sig = run.signatures[-1] if len(run.signatures) == 1 else None
+            if sig is None:  # several specialisations: pick the one of these arguments
+                from numba import typeof
+
+                sig = tuple(typeof(a) for a in args)
+            overload = run.overloads.get(sig)
+            if overload is not None:
+                self._entry[self.parallel] = overload.entry_point
+
     def advance(
         self, ships: NDArray, n_steps: int, danger: float
     ) -> tuple[StepReductions, NDArray]:
@@ -836,13 +872,14 @@ class CompiledBackend:
             sim._v1, sim._v2, sim._a1, sim._a2, sim._qd1, sim._qd2, sim._qdd1, sim._qdd2,
             sim._zd1, sim._zd2,
         )  # fmt: skip
-        run = _advance_parallel if self.parallel else _advance_serial
-        run(
-            _c(ships, np.int64), int(n_steps), sim.integrator_name == "rk4", sim.dt, sim.mu,
-            sim.max_abs_velocity, float(danger), sim.t, sim.eta, sim.nu, sim.z, sim._k,
-            sim._pending, hist, self.hull, waves, rigid, self.radiation, diff, self.propulsion,
-            self.manoeuvring, self.surfaces, cmd, red_max, red_sum, red_danger, done,
+        args = (
+            _c(ships, np.int64), int(n_steps), sim.integrator_name == "rk4", float(sim.dt),
+            sim.mu, float(sim.max_abs_velocity), float(danger), sim.t, sim.eta, sim.nu, sim.z,
+            sim._k, sim._pending, hist, self.hull, waves, rigid, self.radiation, diff,
+            self.propulsion, self.manoeuvring, self.surfaces, cmd, red_max, red_sum, red_danger,
+            done,
         )  # fmt: skip
+        self._call(args)
         ran = np.zeros(n, dtype=bool)
         ran[ships] = True
         return StepReductions(red_max, red_sum, red_danger, ran & (done < n_steps)), done
