@@ -6,7 +6,7 @@ at zero speed in head seas (β = 180°), JONSWAP Hs = 5 m, Tp = 11 s, γ = 3.3, 
 (seed 0), radiation memory on, diffraction and Ikeda roll damping on, dt = 0.05 s. Timed in
 the same run:
 
-* **fast path**: :class:`ship_gym.engine.compiled_step.CompiledShip` (K steps per compiled
+* **fast path**: :class:`ship_gym.engine.compiled.CompiledShip` (K steps per compiled
   call; Holloway's μ-Taylor scheme, 1 force evaluation per step; state-space memory; the
   Froude–Krylov kernel with float32 wave sums) on the 1500-face mesh (``MESH_1500``); also
   with float64 wave sums and on the default 2400-face mesh;
@@ -68,7 +68,7 @@ import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ship_gym.engine.batch import BatchSimulator, build_batch_simulator  # noqa: E402
-from ship_gym.engine.compiled_step import CompiledShip, build_compiled_ship  # noqa: E402
+from ship_gym.engine.compiled import CompiledShip, build_compiled_ship  # noqa: E402
 from ship_gym.engine.ship import ShipSetup, build_simulator, wave_field_for  # noqa: E402
 from ship_gym.engine.simulator import Simulator  # noqa: E402
 from ship_gym.forces.froude_krylov import _fk_one_ship, _fk_one_ship_f32  # noqa: E402
@@ -275,7 +275,7 @@ def _kernel_loop(n, kernel_args, single):  # pragma: no cover - compiled
 
 def _kernel_args(ship: CompiledShip) -> tuple:
     """The kernel's arguments at the ship's current state (its sea folded to O)."""
-    lay = ship.models.froude_krylov.panels._layout
+    lay = ship.sim.forces[0].panels._layout  # the BatchFroudeKrylov model
     w = ship.wave_field
     amp = w.phasor(ship.t) * np.exp(
         -1j * w.wavenumber * (ship.eta[0] * np.cos(w.direction) + ship.eta[1] * np.sin(w.direction))

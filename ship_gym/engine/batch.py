@@ -68,7 +68,7 @@ import math
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numba as nb
 import numpy as np
@@ -93,6 +93,9 @@ from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
 from ship_gym.typing import RowIntegratorName
 from ship_gym.waves.wave_field import WaveField, stack_fields
+
+if TYPE_CHECKING:
+    from ship_gym.engine.simulator import SimulationResult
 
 EngineBackend = Literal["auto", "compiled", "numpy"]
 """``"compiled"``: K steps of all ships in one numba call (:mod:`ship_gym.engine.compiled`);
@@ -1012,6 +1015,8 @@ class BatchSimulator:
         self.forces = list(forces)
         self.n_ships = len(fields)
         self._seas = _Seas(fields, max_components)
+        self.wave_fields: list[WaveField | None] = list(fields)
+        """The ships' seas (as given; None: calm water)."""
         for f in self.forces:
             f.bind(self.n_ships, self._seas.n_comp)
         self.forward_speed = float(forward_speed)
@@ -1301,6 +1306,7 @@ class BatchSimulator:
                 raise ValueError(f"wave_fields must hold {n} fields (one per ship), got {len(wf)}")
             for s, f in zip(ships, wf, strict=True):
                 self._seas.replace(int(s), f)
+                self.wave_fields[int(s)] = f
             self.layout_version += 1
         self.t[ships] = new_t
         self.eta[ships] = new_eta
@@ -1593,6 +1599,79 @@ class BatchSimulator:
             "nu": np.array(rec_nu),
             "diverged": self.diverged.copy(),
         }
+
+    def record(
+        self, duration: float, *, ship: int = 0, record_every: int = 1, progress: bool = False
+    ) -> SimulationResult:
+        """Advance every ship for ``duration`` seconds; the series of one ship.
+
+        The engine's counterpart of :meth:`Simulator.run`: chunks of ``record_every`` steps
+        (one compiled call each when the backend is compiled), the state of ship ``ship`` and
+        the incident-wave elevation at its O after each chunk, the initial state included.
+
+        Parameters
+        ----------
+        duration : float
+            Simulated time [s], a positive multiple of ``dt``.
+        ship : int
+            The recorded ship.
+        record_every : int
+            Steps between records.
+        progress : bool
+            Show a tqdm progress bar.
+
+        Raises
+        ------
+        SimulationDiverged
+            If the recorded ship diverges (the series up to its last valid state is kept in
+            the exception's ``result`` attribute).
+        """
+        from ship_gym.engine.simulator import SimulationDiverged, SimulationResult
+
+        n = round(duration / self.dt)
+        if n < 1 or abs(n * self.dt - duration) > 1e-9 * max(1.0, duration):
+            raise ValueError(
+                f"duration {duration} s must be a positive multiple of dt = {self.dt} s"
+            )
+        if isinstance(record_every, bool) or not isinstance(record_every, int) or record_every < 1:
+            raise ValueError(f"record_every must be an integer ≥ 1, got {record_every!r}")
+        s = int(self._as_ships([ship])[0])
+        rec_t, rec_eta, rec_nu, rec_el = [], [], [], []
+
+        def keep() -> None:
+            rec_t.append(float(self.t[s]))
+            rec_eta.append(self.eta[s].copy())
+            rec_nu.append(self.nu[s].copy())
+            rec_el.append(float(self.elevation_at_ships()[s]))
+
+        def result() -> SimulationResult:
+            return SimulationResult(
+                np.array(rec_t), np.array(rec_eta), np.array(rec_nu), np.array(rec_el)
+            )
+
+        bar = None
+        if progress:
+            from tqdm import tqdm
+
+            bar = tqdm(total=n, desc="simulating", unit="step", mininterval=0.5)
+        keep()
+        left = n
+        try:
+            while left > 0:
+                k = min(record_every, left)
+                self.advance(k)
+                left -= k
+                if self.diverged[s]:
+                    exc = SimulationDiverged(self.divergence_messages[s])
+                    exc.result = result()  # type: ignore[attr-defined]
+                    raise exc
+                keep()
+                if bar is not None:
+                    bar.update(k)
+        finally:
+            if bar is not None:
+                bar.close()
+        return result()
 
     def force_breakdown(self) -> dict[str, NDArray]:
         """(N, 6) body-axis forces per model at the current states (all ships), plus

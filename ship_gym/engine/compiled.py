@@ -49,6 +49,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.control.actuators import actuator_target, servo_angle
+from ship_gym.conventions import SURGE
 from ship_gym.engine.batch_control import (
     BatchActuatedSurfaces,
     BatchHullManoeuvring,
@@ -58,21 +59,17 @@ from ship_gym.engine.batch_control import (
     propeller_force,
     surface_group_force,
 )
-from ship_gym.engine.compiled_step import (
-    _diffraction,
-    _healthy,
-    _local_phasors,
-    _radiation,
-    _refresh_diffraction,
-    _rigid_terms,
-)
+from ship_gym.forces.diffraction import transfer_element
+from ship_gym.forces.fastmath import sincos_turns
 from ship_gym.forces.froude_krylov import _fk_core, _fk_core_f32
 from ship_gym.forces.resistance import holtrop_total
 
 if TYPE_CHECKING:
     from ship_gym.engine.batch import BatchSimulator
+    from ship_gym.engine.ship import Sea, ShipSetup
+    from ship_gym.waves.wave_field import WaveField
 
-__all__ = ["CompiledBackend", "StepReductions"]
+__all__ = ["CompiledBackend", "CompiledShip", "StepReductions", "build_compiled_ship"]
 
 _TWO_PI = 2.0 * math.pi
 _HOLLOWAY_STARTUP = 2  # RK4 steps before μ-Taylor steps (as BatchSimulator)
@@ -275,6 +272,185 @@ def _csr(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
 # ============================================================================================
 # kernels
 # ============================================================================================
+@nb.njit(cache=True, nogil=True)
+def _rigid_terms(q, v, mass, weight, cog, held_angle, rot, total, qdot):  # pragma: no cover
+    """R(φ, θ, ψ), gravity − Coriolis (body axes, about O) and η̇ = J(η) ν of one ship.
+
+    The arithmetic of ``ship_gym.engine.batch._ship_terms`` (one row); η̇ of a held angle
+    is 0, and η̇'s angular rows are NaN where |cos θ| < 1e-9 (reported as a divergence).
+    """
+    cphi, sphi = math.cos(q[3]), math.sin(q[3])
+    cth, sth = math.cos(q[4]), math.sin(q[4])
+    cpsi, spsi = math.cos(q[5]), math.sin(q[5])
+    rot[0, 0] = cpsi * cth
+    rot[0, 1] = -spsi * cphi + cpsi * sth * sphi
+    rot[0, 2] = spsi * sphi + cpsi * cphi * sth
+    rot[1, 0] = spsi * cth
+    rot[1, 1] = cpsi * cphi + sphi * sth * spsi
+    rot[1, 2] = -cpsi * sphi + sth * spsi * cphi
+    rot[2, 0] = -sth
+    rot[2, 1] = cth * sphi
+    rot[2, 2] = cth * cphi
+    fx, fy, fz = rot[2, 0] * weight, rot[2, 1] * weight, rot[2, 2] * weight
+    h0 = h1 = h2 = h3 = h4 = h5 = 0.0
+    for j in range(6):
+        h0 += mass[0, j] * v[j]
+        h1 += mass[1, j] * v[j]
+        h2 += mass[2, j] * v[j]
+        h3 += mass[3, j] * v[j]
+        h4 += mass[4, j] * v[j]
+        h5 += mass[5, j] * v[j]
+    u, vv, w, p, qq, rr = v[0], v[1], v[2], v[3], v[4], v[5]
+    total[0] = fx - (qq * h2 - rr * h1)
+    total[1] = fy - (rr * h0 - p * h2)
+    total[2] = fz - (p * h1 - qq * h0)
+    total[3] = (cog[1] * fz - cog[2] * fy) - ((vv * h2 - w * h1) + (qq * h5 - rr * h4))
+    total[4] = (cog[2] * fx - cog[0] * fz) - ((w * h0 - u * h2) + (rr * h3 - p * h5))
+    total[5] = (cog[0] * fy - cog[1] * fx) - ((u * h1 - vv * h0) + (p * h4 - qq * h3))
+    for i in range(3):
+        qdot[i] = rot[i, 0] * u + rot[i, 1] * vv + rot[i, 2] * w
+    if abs(cth) < 1e-9:
+        qdot[3] = np.nan
+        qdot[4] = np.nan
+        qdot[5] = np.nan
+    else:
+        tth = math.tan(q[4])
+        qdot[3] = p + sphi * tth * qq + cphi * tth * rr
+        qdot[4] = cphi * qq - sphi * rr
+        qdot[5] = sphi / cth * qq + cphi / cth * rr
+    for i in range(3):
+        if held_angle[i]:
+            qdot[3 + i] = 0.0
+
+
+@nb.njit(cache=True, nogil=True)
+def _local_phasors(t, x, y, amplitude, omega_t, phase_t, ramp_time, kxt, kyt, mod, offset, local):
+    """The components at the ship's O: c'ⱼ = cⱼ(t) e^{−i kⱼ (x cos χⱼ + y sin χⱼ)} with
+    cⱼ(t) = r(t) aⱼ e^{i(ωⱼt + εⱼ)} and Matusiak's ramp r (``batch._wave_phasors``), as
+    modulus r aⱼ, phase offset −arg c'ⱼ/2π [turns] reduced to [−½, ½] (what the Froude–Krylov
+    kernel takes, :func:`ship_gym.forces.froude_krylov._fk_core`) and complex c'ⱼ
+    (diffraction); returns Σ|c'ⱼ|. omega_t, phase_t: ωⱼ/2π [turns/s], εⱼ/2π [turns]; kxt, kyt:
+    kⱼ cos χⱼ/2π, kⱼ sin χⱼ/2π [turns/m]. No libm trig: one polynomial sin/cos per component.
+    """
+    if ramp_time > 0.0 and t < ramp_time:
+        u = min(max(t / ramp_time, 0.0), 1.0)
+        r = math.sin(0.5 * math.pi * u) ** 2
+    else:
+        r = 1.0
+    crest = 0.0
+    for j in range(amplitude.shape[0]):
+        m = r * amplitude[j]
+        turns = (kxt[j] * x + kyt[j] * y) - (omega_t[j] * t + phase_t[j])
+        o = turns - np.rint(turns)
+        mod[j] = m
+        offset[j] = o
+        crest += abs(m)
+        sn, cs = sincos_turns(-o)
+        local[j] = complex(m * cs, m * sn)
+    return crest
+
+
+@nb.njit(cache=True, nogil=True)
+def _radiation(
+    v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
+    total, zdot,
+):  # fmt: skip  # pragma: no cover - compiled
+    """Radiation memory: ż = A z + B ν_p into zdot, −(C z + D ν_p) added to total; A, B, C in
+    CSR form (A block-diagonal, B one non-zero per state: O(n_states))."""
+    vp = np.empty(6)
+    for i in range(6):
+        vp[i] = v[i]
+    vp[SURGE] -= speed
+    for i in range(a_ptr.shape[0] - 1):
+        s = 0.0
+        for p in range(a_ptr[i], a_ptr[i + 1]):
+            s += a_val[p] * z[a_idx[p]]
+        for p in range(b_ptr[i], b_ptr[i + 1]):
+            s += b_val[p] * vp[b_idx[p]]
+        zdot[i] = s
+    for o in range(6):
+        s = 0.0
+        for p in range(c_ptr[o], c_ptr[o + 1]):
+            s += c_val[p] * z[c_idx[p]]
+        f = -s
+        if has_d:
+            for j in range(6):
+                f -= vp[j] * d_mat[o, j]
+        total[o] += f
+
+
+@nb.njit(cache=True, nogil=True)
+def _transfer_at(heading, speed, diff, out):  # pragma: no cover - compiled
+    """out[j] = X_D(ω'ⱼ, βⱼ) at ship heading ψ = ``heading`` [rad] for every component; returns
+    the number of components above the table's ω_max.
+
+    As :meth:`Diffraction.heading_expansion`: β = (χⱼ − ψ) mod 2π and, at encounter
+    frequency, ω' = ωⱼ − kⱼ U cos β, then the model's own element look-up
+    (:func:`ship_gym.forces.diffraction.transfer_element`).
+    """
+    table, beta_ext, omega_db, direction, omega_c, wavenumber, encounter = diff[:7]
+    n_above = 0
+    for j in range(direction.shape[0]):
+        b = np.mod(direction[j] - heading, _TWO_PI)
+        w = omega_c[j] - wavenumber[j] * speed * math.cos(b) if encounter else omega_c[j]
+        n_above += transfer_element(w, b, table, beta_ext, omega_db, out, j)
+    return n_above
+
+
+@nb.njit(cache=True, nogil=True)
+def _refresh_diffraction(psi, speed, diff, xd, dxd, diff_ref):  # pragma: no cover - compiled
+    """Cache X_D and ∂X_D/∂ψ (central difference over ±h) at heading ψ, as
+    :meth:`Diffraction.heading_expansion`; returns False, leaving the cache as it was, when the
+    model must raise (``above_range="raise"`` and a component above ω_max)."""
+    h, must_raise, work, count = diff[7:]
+    above = _transfer_at(psi, speed, diff, work[0])
+    if above > 0 and must_raise:
+        return False
+    _transfer_at(psi + h, speed, diff, work[1])
+    _transfer_at(psi - h, speed, diff, work[2])
+    for j in range(xd.shape[0]):
+        for o in range(6):
+            xd[j, o] = work[0, j, o]
+            dxd[j, o] = (work[1, j, o] - work[2, j, o]) / (2.0 * h)
+    diff_ref[0] = psi
+    diff_ref[1] = speed
+    count[0] += 1
+    return True
+
+
+@nb.njit(cache=True, nogil=True)
+def _diffraction(psi, local, xd, dxd, diff_ref, total):  # pragma: no cover - compiled
+    """F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ), X_D cached at heading diff_ref[0]."""
+    dpsi = (psi - diff_ref[0] + math.pi) % _TWO_PI - math.pi
+    for o in range(6):
+        s = 0.0
+        for j in range(local.shape[0]):
+            c = local[j]
+            x = xd[j, o] + dpsi * dxd[j, o]
+            s += c.real * x.real + c.imag * x.imag
+        total[o] += s
+
+
+@nb.njit(cache=True, nogil=True)
+def _viscous_roll(v, b1, b2, total):  # pragma: no cover - compiled
+    """Viscous roll damping −(B1 p + B2 |p| p) added to the roll moment."""
+    p_roll = v[3]
+    total[3] += -(b1 * p_roll + b2 * abs(p_roll) * p_roll)
+
+
+@nb.njit(cache=True, nogil=True)
+def _healthy(q, v, z, v_max):  # pragma: no cover - compiled
+    """q, z finite and max |v| ≤ v_max (False for NaN): the simulators' divergence test."""
+    good = True
+    for i in range(q.shape[0]):
+        good &= np.isfinite(q[i])
+    for i in range(v.shape[0]):
+        good &= abs(v[i]) <= v_max
+    for i in range(z.shape[0]):
+        good &= np.isfinite(z[i])
+    return good
+
+
 @nb.njit(cache=True, nogil=True)
 def _evaluate(
     s, t, q, v, z, hull, waves, rigid, rad, diff, prop, man, surf, cmd, targets, work6,
@@ -883,3 +1059,284 @@ class CompiledBackend:
         ran = np.zeros(n, dtype=bool)
         ran[ships] = True
         return StepReductions(red_max, red_sum, red_danger, ran & (done < n_steps)), done
+
+
+# ============================================================================================
+# per-term timing loops (CompiledShip.term_costs)
+# ============================================================================================
+@nb.njit(cache=True)
+def _loop_phasors(n, t, q, amplitude, omega_t, phase_t, ramp_time, kxt, kyt, mod, offset, local):
+    crest = 0.0
+    for _ in range(n):
+        crest = _local_phasors(
+            t, q[0], q[1], amplitude, omega_t, phase_t, ramp_time, kxt, kyt, mod, offset, local
+        )
+    return crest
+
+
+@nb.njit(cache=True)
+def _loop_fk(
+    n, body, tri, tri_last, tri_first, spread, weights, areas, rho_g, single, rot, z0, kxt, kyt,
+    k2, kxt32, kyt32, k232, mod, offset, crest,
+):  # fmt: skip  # pragma: no cover - compiled
+    fe = np.zeros(6)
+    for _ in range(n):
+        fe[:] = 0.0
+        if single:
+            _fk_core_f32(
+                body, tri, tri_last, tri_first, spread, weights, areas, rot, z0, kxt32, kyt32,
+                k232, mod.astype(np.float32), offset.astype(np.float32), crest, rho_g, fe,
+            )  # fmt: skip
+        else:
+            _fk_core(
+                body, tri, tri_last, tri_first, spread, weights, areas, rot, z0, kxt, kyt, k2,
+                mod, offset, crest, rho_g, fe,
+            )  # fmt: skip
+    return fe
+
+
+@nb.njit(cache=True)
+def _loop_radiation(
+    n, v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d
+):  # fmt: skip  # pragma: no cover - compiled
+    total = np.zeros(6)
+    zdot = np.empty(z.shape[0])
+    for _ in range(n):
+        _radiation(
+            v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat,
+            has_d, total, zdot,
+        )  # fmt: skip
+    return total
+
+
+@nb.njit(cache=True)
+def _loop_diffraction(n, psi, local, xd, dxd, diff_ref):  # pragma: no cover - compiled
+    total = np.zeros(6)
+    for _ in range(n):
+        _diffraction(psi, local, xd, dxd, diff_ref, total)
+    return total
+
+
+@nb.njit(cache=True)
+def _loop_rigid(n, q, v, mass, weight, cog, held_angle, b1, b2):  # pragma: no cover - compiled
+    rot = np.empty((3, 3))
+    total = np.empty(6)
+    qdot = np.empty(6)
+    for _ in range(n):
+        _rigid_terms(q, v, mass, weight, cog, held_angle, rot, total, qdot)
+        _viscous_roll(v, b1, b2, total)
+    return total
+
+
+# ============================================================================================
+# one ship
+# ============================================================================================
+class CompiledShip:
+    """One ship on the compiled engine: a :class:`BatchSimulator` of N = 1 with a single-ship
+    face (states as (6,) views, :class:`SimulationDiverged` raised, a recorded :meth:`run`).
+
+    Built by :func:`build_compiled_ship`. Any force set the engine compiles works (control
+    models included); commands go to :meth:`advance`.
+
+    Attributes
+    ----------
+    sim : BatchSimulator
+        The engine (``backend="compiled"``).
+    """
+
+    def __init__(self, sim: BatchSimulator) -> None:
+        if sim.n_ships != 1:
+            raise ValueError(f"CompiledShip holds one ship, got a batch of {sim.n_ships}")
+        self.sim = sim
+        self.hull = sim.hull
+        self.dt = sim.dt
+        self.forward_speed = sim.forward_speed
+        self.integrator_name = sim.integrator_name
+        self.n_states = sim.n_states
+        self.wave_field = sim.wave_fields[0]
+        self.backend = sim._compiled_backend()
+        if self.backend is None:
+            raise NotImplementedError(f"no compiled version: {sim._compiled_error}")
+
+    @property
+    def max_abs_velocity(self) -> float:
+        """|ν| above which the ship is declared diverged [m/s, rad/s] (the engine's)."""
+        return self.sim.max_abs_velocity
+
+    @max_abs_velocity.setter
+    def max_abs_velocity(self, value: float) -> None:
+        self.sim.max_abs_velocity = float(value)
+
+    @property
+    def eta(self) -> NDArray:
+        """(6,) position and Euler angles (a view)."""
+        return self.sim.eta[0]
+
+    @property
+    def nu(self) -> NDArray:
+        """(6,) body velocities (a view)."""
+        return self.sim.nu[0]
+
+    @property
+    def z(self) -> NDArray:
+        """(n_states,) radiation memory states (a view)."""
+        return self.sim.z[0]
+
+    @property
+    def t(self) -> float:
+        """Time [s]."""
+        return float(self.sim.t[0])
+
+    @property
+    def n_steps(self) -> int:
+        """Steps since the last reset."""
+        return int(self.sim.n_steps[0])
+
+    @property
+    def n_refreshes(self) -> int:
+        """Diffraction cache refreshes inside the compiled loop since construction."""
+        return int(self.backend._diff_work[1][0])
+
+    def reset(self, eta: NDArray | None = None, nu: NDArray | None = None, t0: float = 0.0):
+        """Restart at ``t0`` from (η, ν) (defaults: the equilibrium, (U, 0, …, 0))."""
+        self.sim.reset(eta=eta, nu=nu, t0=t0)
+
+    def advance(self, n_steps: int = 1, commands: dict | None = None) -> None:
+        """Take ``n_steps`` steps in one compiled call.
+
+        Raises
+        ------
+        SimulationDiverged
+            If a step produces a non-finite or too fast state; the ship keeps the state of the
+            start of that step.
+        """
+        from ship_gym.engine.simulator import SimulationDiverged
+
+        if int(n_steps) < 0:
+            raise ValueError(f"n_steps must be ≥ 0, got {n_steps!r}")
+        if self.sim.diverged[0]:
+            raise SimulationDiverged(self.sim.divergence_messages[0])
+        if int(n_steps) == 0:
+            return
+        cmd = None if commands is None else {k: np.atleast_1d(v) for k, v in commands.items()}
+        self.sim.advance(int(n_steps), cmd)
+        if self.sim.diverged[0]:
+            raise SimulationDiverged(self.sim.divergence_messages[0])
+
+    def run(self, n_steps: int, *, record_every: int = 1) -> dict[str, NDArray]:
+        """Take ``n_steps`` steps, recording every ``record_every``-th state.
+
+        Returns
+        -------
+        dict
+            ``"t"`` (n_rec,), ``"eta"`` and ``"nu"`` (n_rec, 6), the initial state included.
+        """
+        if record_every < 1:
+            raise ValueError(f"record_every must be ≥ 1, got {record_every!r}")
+        ts, etas, nus = [self.t], [self.eta.copy()], [self.nu.copy()]
+        left = int(n_steps)
+        while left > 0:
+            n = min(record_every, left)
+            self.advance(n)
+            left -= n
+            if n == record_every:
+                ts.append(self.t)
+                etas.append(self.eta.copy())
+                nus.append(self.nu.copy())
+        return {"t": np.array(ts), "eta": np.array(etas), "nu": np.array(nus)}
+
+    def term_costs(self, repeats: int = 200, rounds: int = 5) -> dict[str, float]:
+        """CPU time [s] of one call of each term of an evaluation at the current state.
+
+        Each term runs ``repeats`` times in a compiled loop (no Python in between), the
+        fastest of ``rounds`` loops is kept (``time.process_time``). Keys:
+        ``"froude_krylov_hydrostatic"``, ``"wave_phasors"``, ``"radiation"``,
+        ``"diffraction"`` (0 without it), ``"rigid_body_viscous_roll"``. Timing only.
+        """
+        import time
+
+        b = self.backend
+        waves, rigid, diff = b._records()
+        w = [x[0] if np.ndim(x) else float(x[0]) for x in waves]
+        amp, omega_t, phase_t, ramp, kxt, kyt, k2, kxt32, kyt32, k232 = w
+        n_c = amp.shape[0]
+        mod, offset = np.empty(n_c), np.empty(n_c)
+        local = np.empty(n_c, dtype=np.complex128)
+        q, v, t = self.eta.copy(), self.nu.copy(), self.t
+        rot = np.empty((3, 3))
+        mass, weight, cog, held = rigid.mass[0], rigid.weight, rigid.cog[0], rigid.held_angle
+        _rigid_terms(q, v, mass, weight, cog, held, rot, np.empty(6), np.empty(6))
+        crest = _local_phasors(
+            t, q[0], q[1], amp, omega_t, phase_t, ramp, kxt, kyt, mod, offset, local
+        )
+        h = b.hull
+        hull = (h.body, h.tri, h.tri_last, h.tri_first, h.spread, h.weights, h.areas, h.rho_g)
+        r = b.radiation
+        rad = tuple(r)
+        psi_ref = diff.psi_ref[0:1] if diff.enabled else np.array([q[5]])
+        p = b.propulsion
+        jobs = {
+            "froude_krylov_hydrostatic": lambda n: _loop_fk(
+                n, *hull, h.single, rot, q[2], kxt, kyt, k2, kxt32, kyt32, k232, mod, offset,
+                crest,
+            ),
+            "wave_phasors": lambda n: _loop_phasors(
+                n, t, q, amp, omega_t, phase_t, ramp, kxt, kyt, mod.copy(), offset.copy(),
+                local.copy(),
+            ),
+            "radiation": lambda n: _loop_radiation(n, v, self.z.copy(), *rad),
+            "diffraction": lambda n: _loop_diffraction(
+                n, q[5], local, diff.xd[0], diff.dxd[0], psi_ref
+            ),
+            "rigid_body_viscous_roll": lambda n: _loop_rigid(
+                n, q, v, mass, weight, cog, held, p.viscous_b1, p.viscous_b2
+            ),
+        }  # fmt: skip
+        out: dict[str, float] = {}
+        for name, job in jobs.items():
+            if name == "diffraction" and not diff.enabled:
+                out[name] = 0.0
+                continue
+            job(1)  # compile
+            best = np.inf
+            for _ in range(rounds):
+                c0 = time.process_time()
+                job(repeats)
+                best = min(best, (time.process_time() - c0) / repeats)
+            out[name] = float(best)
+        return out
+
+
+def build_compiled_ship(
+    setup: ShipSetup,
+    wave_field: WaveField | None,
+    *,
+    sea: Sea = None,
+    wave_heading: float = np.pi,
+    precision: str | None = None,
+) -> CompiledShip:
+    """One ship of ``setup`` at the free-floating equilibrium on the compiled engine.
+
+    Parameters
+    ----------
+    setup : ShipSetup
+        ``integrator`` "holloway" or "rk4"; every model must have a compiled version.
+    wave_field : WaveField or None
+        The sea (:func:`ship_gym.engine.ship.wave_field_for`).
+    sea, wave_heading
+        As for :func:`ship_gym.engine.batch.build_batch_simulator` (2a/2b radiation).
+    precision : {"float64", "float32"}, optional
+        Wave sums of the Froude–Krylov kernel (overrides ``setup.fk_method``).
+    """
+    import dataclasses
+
+    from ship_gym.engine.batch import build_batch_simulator
+
+    if precision is not None:
+        if precision not in ("float64", "float32"):
+            raise ValueError(f"precision must be 'float64' or 'float32', got {precision!r}")
+        setup = dataclasses.replace(setup, fk_method="fast32" if precision == "float32" else "fast")
+    sim = build_batch_simulator(
+        setup, [wave_field], sea=sea, wave_heading=wave_heading, backend="compiled"
+    )
+    return CompiledShip(sim)

@@ -109,7 +109,7 @@ def transfer_element(w, b, table, beta_ext, omega_db, out, j):  # pragma: no cov
     Bilinear in (|ω'|, β), the ω_min row scaled by (|ω'|/ω_min)² below ω_min, zero above
     ω_max, conjugated for ω' < 0. The one implementation of the look-up: the model's
     :meth:`~Diffraction.diffraction_transfer` loops over it, and so does the compiled
-    single-ship stepper (:mod:`ship_gym.engine.compiled_step`) when it refreshes its cache.
+    single-ship stepper (:mod:`ship_gym.engine.compiled`) when it refreshes its cache.
     """
     n_beta = beta_ext.shape[0]
     n_omega = omega_db.shape[0]

@@ -1,15 +1,16 @@
-"""CompiledShip against BatchSimulator and Simulator (same setup, same sea, same start).
+"""CompiledShip (one ship on the compiled engine) against the engine's numpy path and the
+single-ship Simulator (same setup, same sea, same start).
 
-The compiled stepper re-implements the reference force set and the integrators in one numba
-loop; with float64 wave sums it must follow the other engines' trajectories to rounding, and
-with float32 wave sums stay within a stated tolerance of its float64 self.
+The compiled loop runs the row kernels of the force models; with float64 wave sums it must
+follow the numpy path and the Simulator to rounding, and with float32 wave sums stay within a
+stated tolerance of its float64 self.
 """
 
 import numpy as np
 import pytest
 
 from ship_gym.engine.batch import build_batch_simulator
-from ship_gym.engine.compiled_step import CompiledShip, build_compiled_ship
+from ship_gym.engine.compiled import build_compiled_ship
 from ship_gym.engine.ship import ShipSetup, build_simulator, wave_field_for
 from ship_gym.engine.simulator import SimulationDiverged
 from ship_gym.waves.sea_state import IrregularSea
@@ -52,7 +53,7 @@ def test_matches_batch_simulator(integrator, n_steps, free):
     setup = ShipSetup(integrator=integrator, free_dofs=free)
     field = _field()
     ship = build_compiled_ship(setup, field)
-    batch = build_batch_simulator(setup, [field])
+    batch = build_batch_simulator(setup, [field], backend="numpy")
     np.testing.assert_array_equal(ship.eta, batch.eta[0])
     mine = ship.run(n_steps)
     theirs = batch.run(n_steps)
@@ -70,7 +71,7 @@ def test_constant_coefficient_radiation_matches_batch_simulator():
     setup = ShipSetup(integrator="holloway", radiation="2b")
     field = _field()
     ship = build_compiled_ship(setup, field, sea=SEA, wave_heading=BETA)
-    batch = build_batch_simulator(setup, [field], sea=SEA, wave_heading=BETA)
+    batch = build_batch_simulator(setup, [field], sea=SEA, wave_heading=BETA, backend="numpy")
     assert ship.n_states == 0
     mine, theirs = ship.run(120), batch.run(120)
     for key in ("eta", "nu"):
@@ -153,13 +154,13 @@ def test_bad_input_is_rejected():
     ship = build_compiled_ship(setup, None)
     with pytest.raises(ValueError, match="n_steps"):
         ship.advance(-1)
-    with pytest.raises(ValueError, match="6 components"):
+    with pytest.raises(ValueError, match=r"eta must have shape \(6,\)"):
         ship.reset(eta=np.zeros(5))
     with pytest.raises(ValueError, match="precision"):
-        CompiledShip(ship.hull, list(ship.models.__dict__.values()), None, precision="half")
-    with pytest.raises(NotImplementedError, match="state_space"):
+        build_compiled_ship(setup, None, precision="half")
+    with pytest.raises(NotImplementedError, match="state-space"):
         build_compiled_ship(ShipSetup(integrator="holloway", radiation="convolution"), None)
-    with pytest.raises(NotImplementedError, match="'holloway' and 'rk4'"):
+    with pytest.raises(NotImplementedError, match="'rk4' and 'holloway'"):
         build_compiled_ship(ShipSetup(integrator="abm"), None)
 
 
@@ -168,16 +169,26 @@ def test_compiled_diffraction_refresh_equals_the_models_look_up(speed):
     # the refresh inside the compiled loop (no return to Python) against
     # Diffraction.heading_expansion, at headings all around the circle and at forward speed
     # (encounter frequencies, some beyond the table: zero, some negative: conjugated)
-    from ship_gym.engine.compiled_step import _refresh_diffraction
+    from ship_gym.engine.batch import BatchDiffraction
+    from ship_gym.engine.compiled import _refresh_diffraction
 
     ship = build_compiled_ship(ShipSetup(integrator="holloway", speed=speed), _field())
-    model, w = ship.models.diffraction, ship.wave_field
+    model = next(f for f in ship.sim.forces if isinstance(f, BatchDiffraction)).template
+    w = ship.wave_field
     n_c = w.n_components
+    b = ship.backend
+    en, table, beta, omega_db = b._diff_static
+    assert en
+    tables = (
+        table, beta, omega_db, np.ascontiguousarray(w.direction), np.ascontiguousarray(w.omega),
+        np.ascontiguousarray(w.wavenumber), model.frequency == "encounter", model.heading_step,
+        False, np.zeros((3, n_c, 6), dtype=complex), np.zeros(1, dtype=np.int64),
+    )  # fmt: skip
     for psi in np.radians([0.0, 37.0, 90.0, 179.9, 180.0, 251.0, -33.0, 719.0]):
         xd = np.zeros((n_c, 6), dtype=complex)
         dxd = np.zeros((n_c, 6), dtype=complex)
         ref = np.array([np.nan, np.nan])
-        assert _refresh_diffraction(psi, speed, ship._diff, xd, dxd, ref)
+        assert _refresh_diffraction(psi, speed, tables, xd, dxd, ref)
         x, dx, _, _ = model.heading_expansion(w.direction, w.omega, w.wavenumber, psi, speed)
         # the same arithmetic; np.cos (numpy's SIMD loop) and math.cos may differ by an ulp
         np.testing.assert_allclose(xd, x, rtol=1e-13, atol=1e-13 * np.abs(x).max())
@@ -191,16 +202,17 @@ def test_turning_ship_refreshes_in_the_compiled_loop():
     setup = ShipSetup(integrator="holloway")
     field = _field(beta=np.radians(100.0))
     ship = build_compiled_ship(setup, field, wave_heading=np.radians(100.0))
-    batch = build_batch_simulator(setup, [field], wave_heading=np.radians(100.0))
+    batch = build_batch_simulator(setup, [field], wave_heading=np.radians(100.0), backend="numpy")
     mine, theirs = ship.run(400, record_every=400), batch.run(400)
-    assert ship.n_refreshes > 3 and ship._python_refreshes == 0
+    assert ship.n_refreshes > 3
     err = _rel_err(np.stack([mine["eta"][0], mine["eta"][-1]]), theirs["eta"][[0, -1], 0])
     assert err.max() < REL_TOL
 
 
-def test_diffraction_above_range_raise_is_raised_from_python():
-    # above_range="raise" cannot raise inside numba: the compiled refresh hands such a look-up
-    # back to the model, which raises with its message, and the state stays as it was
+def test_diffraction_above_range_raise_runs_on_the_numpy_path():
+    # above_range="raise" cannot raise inside numba: the engine leaves such a model to its
+    # numpy path, where the model raises with its message and the state stays as it was
+    from ship_gym.engine.batch import BatchSimulator, batch_force_models
     from ship_gym.engine.ship import build_force_models
     from ship_gym.forces.diffraction import Diffraction
     from ship_gym.hull import load_hull
@@ -214,9 +226,13 @@ def test_diffraction_above_range_raise_is_raised_from_python():
         Diffraction(database, field, above_range="raise") if isinstance(m, Diffraction) else m
         for m in (built[0] if isinstance(built, tuple) else built)
     ]
-    ship = CompiledShip(hull, models, field, forward_speed=12.0)
-    eta = ship.eta.copy()
+    sim = BatchSimulator(hull, batch_force_models(models), [field], forward_speed=12.0)
+    assert not sim.compiled
+    eta = sim.eta.copy()
     with pytest.raises(ValueError, match="above_range='raise'"):
-        ship.advance(3)
-    np.testing.assert_array_equal(ship.eta, eta)
-    assert ship.n_refreshes == 0
+        sim.advance(3)
+    np.testing.assert_array_equal(sim.eta, eta)
+    with pytest.raises(NotImplementedError, match="above_range='raise'"):
+        BatchSimulator(
+            hull, batch_force_models(models), [field], forward_speed=12.0, backend="compiled"
+        ).advance(1)
