@@ -1148,13 +1148,15 @@ class BatchSimulator:
                 sum_sq += roll * roll
                 danger += absr > danger_roll
             return StepReductions(max_abs, sum_sq, danger, newly)
-        ships = np.flatnonzero(~self.diverged)
+        ships = self._all if not self.diverged.any() else np.flatnonzero(~self.diverged)
         if ships.size == 0:
             z = np.zeros(self.n_ships)
             return StepReductions(z, z.copy(), np.zeros(self.n_ships, np.int64), z > 0)
         reductions, done = backend.advance(ships, k, danger_roll)
         self.n_steps += done
-        self.n_evaluations += int(done.max()) * self.evaluations_per_step
+        self.n_evaluations += k * self.evaluations_per_step
+        if not reductions.diverged.any():
+            return reductions
         for s in np.flatnonzero(reductions.diverged):
             self.diverged[s] = True
             self.divergence_messages[int(s)] = (
@@ -1636,18 +1638,16 @@ class BatchSimulator:
         if isinstance(record_every, bool) or not isinstance(record_every, int) or record_every < 1:
             raise ValueError(f"record_every must be an integer ≥ 1, got {record_every!r}")
         s = int(self._as_ships([ship])[0])
-        rec_t, rec_eta, rec_nu, rec_el = [], [], [], []
+        rec_t, rec_eta, rec_nu = [], [], []
 
         def keep() -> None:
             rec_t.append(float(self.t[s]))
             rec_eta.append(self.eta[s].copy())
             rec_nu.append(self.nu[s].copy())
-            rec_el.append(float(self.elevation_at_ships()[s]))
 
         def result() -> SimulationResult:
-            return SimulationResult(
-                np.array(rec_t), np.array(rec_eta), np.array(rec_nu), np.array(rec_el)
-            )
+            t, eta = np.array(rec_t), np.array(rec_eta)
+            return SimulationResult(t, eta, np.array(rec_nu), self._elevation_series(s, t, eta))
 
         bar = None
         if progress:
@@ -1701,6 +1701,19 @@ class BatchSimulator:
             f"no servo-driven force model named {name!r}; the models are "
             f"{[f.name for f in self.forces]}"
         )
+
+    def _elevation_series(self, ship: int, t: NDArray, eta: NDArray) -> NDArray:
+        """ζ [m] at ship ``ship``'s O along a recorded series (times t, states eta), in its sea."""
+        from ship_gym.waves.wave_field import ramp_factor
+
+        seas = self._seas
+        arg = (
+            seas.omega[ship] * t[:, None]
+            + seas.phase[ship]
+            - (seas.kx[ship] * eta[:, :1] + seas.ky[ship] * eta[:, 1:2])
+        )
+        r = ramp_factor(t, seas.ramp_time[ship])
+        return r * (np.cos(arg) @ seas.amplitude[ship])
 
     def elevation_at_ships(self) -> NDArray:
         """(N,) incident-wave elevation at each ship's O [m] (ζ = Re Σⱼ c'ⱼ)."""

@@ -1048,17 +1048,22 @@ class CompiledBackend:
             sim._v1, sim._v2, sim._a1, sim._a2, sim._qd1, sim._qd2, sim._qdd1, sim._qdd2,
             sim._zd1, sim._zd2,
         )  # fmt: skip
+        if ships.dtype != np.int64 or not ships.flags.c_contiguous:
+            ships = _c(ships, np.int64)
         args = (
-            _c(ships, np.int64), int(n_steps), sim.integrator_name == "rk4", float(sim.dt),
+            ships, int(n_steps), sim.integrator_name == "rk4", float(sim.dt),
             sim.mu, float(sim.max_abs_velocity), float(danger), sim.t, sim.eta, sim.nu, sim.z,
             sim._k, sim._pending, hist, self.hull, waves, rigid, self.radiation, diff,
             self.propulsion, self.manoeuvring, self.surfaces, cmd, red_max, red_sum, red_danger,
             done,
         )  # fmt: skip
         self._call(args)
-        ran = np.zeros(n, dtype=bool)
-        ran[ships] = True
-        return StepReductions(red_max, red_sum, red_danger, ran & (done < n_steps)), done
+        diverged = done < n_steps
+        if ships.shape[0] != n:
+            ran = np.zeros(n, dtype=bool)
+            ran[ships] = True
+            diverged &= ran
+        return StepReductions(red_max, red_sum, red_danger, diverged), done
 
 
 # ============================================================================================
