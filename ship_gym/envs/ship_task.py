@@ -82,6 +82,8 @@ if TYPE_CHECKING:
 __all__ = [
     "RUDDER_LIMIT_DEG",
     "S175_MESH",
+    "S175_MESH_FAST",
+    "S175_MESH_FINE",
     "SENSOR_NOISE_STD",
     "SHIP_ARGUMENTS",
     "SHIP_KWARGS",
@@ -104,13 +106,19 @@ __all__ = [
     "vector_env_docstring",
 ]
 
-S175_MESH: tuple[int, int, int, int] = (50, 10, 4, 2)
-"""Default S175 mesh resolution (n_sections, n_below, n_above, n_deck): 1500 panels (the
-accuracy study, ``docs/accuracy/results.md``: GZ within a few mm and the roll period within
-0.5 % of a 9600-panel mesh)."""
+S175_MESH: tuple[int, int, int, int] = (60, 12, 6, 4)
+"""Default S175 mesh resolution (n_sections, n_below, n_above, n_deck): 2400 panels, the
+library hull's. Against a 9600-panel mesh (``docs/accuracy/results.md``): GZ within 2.4 mm, roll
+period −0.28 %, RMS roll +2.8 % in a stern-quartering sea near roll resonance."""
 
-S175_MESH_2400: tuple[int, int, int, int] = (60, 12, 6, 4)
-"""The library's default S175 mesh (2400 panels), the environments' default before v1."""
+S175_MESH_FAST: tuple[int, int, int, int] = (50, 10, 4, 2)
+"""The fastest mesh the accuracy study admits: 1500 panels, ≈ 1.6× faster than
+:data:`S175_MESH`; GZ within 4.2 mm and roll period −0.43 %, but RMS roll +4.5 % near roll
+resonance (``docs/accuracy/results.md``)."""
+
+S175_MESH_FINE: tuple[int, int, int, int] = (90, 18, 9, 6)
+"""5400 panels: RMS motions within 0.3 % of a 9600-panel mesh at ≈ 1.5× the cost of
+:data:`S175_MESH` (``docs/accuracy/results.md``)."""
 
 RUDDER_LIMIT_DEG = 35.0
 """Rudder angle limit of the servo [deg] (:data:`ship_gym.control.actuators.RUDDER_SERVO`)."""
@@ -963,7 +971,7 @@ def s175_setup(
             f"got {hull_mesh!r}"
         )
     overrides: dict[str, Any] = {}
-    if mesh != S175_MESH_2400:  # the library hull's own mesh
+    if mesh != S175_MESH:  # the library hull's own mesh
         overrides.update(
             n_sections=int(mesh[0]),
             n_below=int(mesh[1]),
@@ -1286,8 +1294,8 @@ def env_docstring(
         "v0: initial version.",
         "v1: one compiled engine call per control step; servos sampled at each physics step "
         "and advanced by the exact solution of their lag and rate limit (v0 integrated them as "
-        "ODE states: under Holloway's scheme a constant command cycled); defaults 1500-panel "
-        "S175 mesh and float32 wave sums (docs/accuracy/results.md).",
+        "ODE states: under Holloway's scheme a constant command cycled); float32 wave sums by "
+        "default (docs/accuracy/results.md: ≤ 3e-5 % on every motion statistic).",
     ),
 ) -> Callable[[_EnvType], _EnvType]:
     """Class decorator completing a ship environment's Gymnasium v5 docstring.

@@ -277,5 +277,5 @@ def test_arguments_table_takes_the_defaults_from_the_signature():
     )
     assert "| hs_range_m | (3, 5) | m | significant wave height range |" in table
     assert '| rudder_mode | "absolute" | - | mode |' in table
-    assert "| hull_mesh | (50, 10, 4, 2) | - |" in table
+    assert "| hull_mesh | (60, 12, 6, 4) | - |" in table
     assert "| speed_range_mps | None | m/s |" in table

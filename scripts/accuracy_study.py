@@ -1,0 +1,980 @@
+#!/usr/bin/env python
+"""Accuracy study of the environments' numerical settings (mesh, FK precision, integrator, dt).
+
+The ship environments simulate the S175 at Fn 0.25–0.3 with four numerical knobs: the hull mesh
+(``hull_overrides`` n_sections, n_below, n_above, n_deck), the precision of the Froude–Krylov
+wave sums (``ShipSetup.fk_method`` "fast" = float64, "fast32" = float32), the integrator
+("holloway", "rk4") and the physics time step. This script measures, against the finest setting
+(the 9600-face mesh = 4× the library's 2400-face default, float64, RK4, Δt = 0.025 s):
+
+1. **hydrostatics** per mesh: displacement at the design waterline, equilibrium sinkage, GMt at
+   the free-floating equilibrium, the GZ curve 0–70° (:func:`ship_gym.hull.righting_arm`, free
+   sinkage and trim) and the angle of vanishing stability; also against a 21600-face mesh, to
+   show how far the 9600-face reference itself is from convergence;
+2. **roll decay** in calm water (φ₀ = 10°, Fn 0.25): roll period from the zero crossings of the
+   first three cycles, roll amplitude after three cycles;
+3. **response in waves** at Fn 0.25: a regular bow sea (H = 2 m, λ = Lpp = 175 m, β = 150°) and a
+   stern-quartering irregular sea (JONSWAP Hs = 4 m, Tp = 11 s, γ = 3.3, 40 components as in the
+   environments, β = 60°, fixed seed), 300 s with the default 50 s ramp; RMS (and, regular sea,
+   half the peak-to-peak) of heave, roll and pitch over t ≥ 100 s, relative to the reference,
+   and the phase-sensitive time-series error RMS(x − x_ref) / RMS(x_ref) (each record about
+   its own mean) on the common 0.1 s grid;
+4. **cost**: wall and CPU time per simulated second of one ship (BatchSimulator with N = 1, the
+   environments' engine) in the irregular sea after the ramp, fastest of 3 interleaved repeats.
+
+The ship: ``ShipSetup`` of the environments (:func:`ship_gym.envs.ship_task.s175_setup`:
+state-space radiation memory, diffraction, Ikeda viscous roll damping, nonlinear Froude–Krylov +
+hydrostatics on the instantaneous wetted hull, KG 9.55 m) without propulsion, manoeuvring and
+rudder, surge/sway/yaw held (surge at U = Fn √(g Lpp)), heave/roll/pitch free — as
+``scripts/convergence_study.py`` does. Built with
+:func:`ship_gym.engine.batch.build_batch_simulator` (one ship).
+
+Combinations: one factor at a time from the current default (the 2400-face library mesh, the
+environments' S175_MESH when the study was set up, "fast", Holloway, Δt = 0.05 s), from a
+candidate fast default (the 1500-face mesh of ``scripts/bench_simulator.py`` ``MESH_1500``,
+"fast32", Holloway, Δt = 0.1 s; meshes 2400, 3840 = (60, 24, 6, 4), 5400 = (90, 18, 9, 6) and
+9600 in its place) and from the recommended setting (5400 faces, "fast32", Holloway, 0.1 s),
+plus the meshes at the reference numerics (mesh error alone) and the numerics on the reference
+mesh (time-integration error alone). The full factorial is not needed to see which factor
+matters. The acceptance criteria (|ΔT roll| ≤ 1 %, max |Δ RMS| ≤ 2 % or 3 %, max |ΔGZ| ≤ 5 mm)
+are checked for every combination and the cheapest passing one is printed.
+
+Threads: NUMBA_NUM_THREADS, OMP_NUM_THREADS, OPENBLAS_NUM_THREADS, MKL_NUM_THREADS = 1 before
+numpy/numba are imported, and threadpoolctl limits BLAS to one thread: every number is
+single-thread. A full run took 558 s on a 2-core machine shared with other work (load ≈ 3);
+``--quick`` (≈ 45 s) is a smoke test with 120 s records, a 10° GZ grid and four combinations
+(its figure goes to ``out/accuracy_quick.png``). ``--replot JSON`` redraws the tables and the
+figure from a ``--json`` file. Results and recommendation: ``docs/accuracy/results.md``.
+
+Usage::
+
+    python scripts/accuracy_study.py [--quick] [--json PATH] [--output docs/accuracy/accuracy.png]
+                                     [--replot JSON]
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("NUMBA_NUM_THREADS", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_var] = "1"
+
+import argparse  # noqa: E402
+import datetime  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from dataclasses import dataclass  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+from threadpoolctl import threadpool_limits  # noqa: E402
+
+from ship_gym.conventions import GRAVITY  # noqa: E402
+from ship_gym.engine.batch import BatchSimulator, build_batch_simulator  # noqa: E402
+from ship_gym.engine.ship import ShipSetup, wave_field_for  # noqa: E402
+from ship_gym.hull import equilibrium, hydrostatics, load_hull, righting_arm  # noqa: E402
+from ship_gym.waves.sea_state import IrregularSea, RegularWave  # noqa: E402
+
+# ------------------------------------------------------------------------------------ settings
+LPP = 175.0
+FROUDE = 0.25
+SPEED = FROUDE * math.sqrt(GRAVITY * LPP)
+FREE_DOFS = (False, False, True, True, True, False)  # heave, roll, pitch free
+DOFS = {"heave": 2, "roll": 3, "pitch": 4}
+UNITS = {"heave": "m", "roll": "deg", "pitch": "deg"}
+SEED = 20240611
+SAMPLE_DT = 0.1  # common comparison grid [s]: a multiple of every dt
+ROLL0_DEG = 10.0
+
+MESH_KEYS = ("n_sections", "n_below", "n_above", "n_deck")
+MESHES: dict[str, tuple[int, int, int, int]] = {
+    "1500": (50, 10, 4, 2),  # scripts/bench_simulator.py MESH_1500 (the fast-path benchmark)
+    "2400": (60, 12, 6, 4),  # the library's default, S175_MESH of the environments until v1
+    "3840": (60, 24, 6, 4),  # the default with twice the panels below the waterline
+    "5400": (90, 18, 9, 6),  # 1.5x the default in every direction
+    "9600": (120, 24, 12, 8),  # 4x the default face count: the reference
+    "21600": (180, 36, 18, 12),  # 9x: checks how converged the reference mesh is
+}
+REF_MESH = "9600"
+FINER_MESH = "21600"
+
+
+@dataclass(frozen=True)
+class Combo:
+    """One numerical setting."""
+
+    mesh: str
+    precision: str  # "fast" (float64 wave sums) or "fast32"
+    integrator: str  # "holloway" or "rk4"
+    dt: float
+
+    @property
+    def label(self) -> str:
+        return f"{self.mesh}/{self.precision}/{self.integrator}/{self.dt:g}"
+
+
+REFERENCE = Combo(REF_MESH, "fast", "rk4", 0.025)
+CURRENT = Combo("2400", "fast", "holloway", 0.05)
+CANDIDATE = Combo("1500", "fast32", "holloway", 0.1)
+# the setting this study recommends (docs/accuracy/results.md); its own factors are varied too
+RECOMMENDED = Combo("5400", "fast32", "holloway", 0.1)
+FINER = Combo(FINER_MESH, "fast", "rk4", 0.025)
+
+
+def combinations(quick: bool) -> dict[Combo, list[str]]:
+    """The combinations and their roles (one factor at a time from the baselines)."""
+    roles: dict[Combo, list[str]] = {}
+
+    def add(c: Combo, role: str) -> None:
+        roles.setdefault(c, []).append(role)
+
+    add(REFERENCE, "reference")
+    add(CURRENT, "current default")
+    add(CANDIDATE, "candidate")
+    add(RECOMMENDED, "recommended")
+    if quick:
+        return roles
+    bases = (("current", CURRENT), ("candidate", CANDIDATE), ("recommended", RECOMMENDED))
+    for name, base in bases:
+        meshes = {
+            "current": ("1500", REF_MESH),
+            "candidate": ("2400", "3840", "5400", REF_MESH),
+            "recommended": (),
+        }[name]
+        for mesh in meshes:
+            if mesh != base.mesh:
+                add(Combo(mesh, base.precision, base.integrator, base.dt), f"{name}: mesh {mesh}")
+        other = "fast32" if base.precision == "fast" else "fast"
+        add(Combo(base.mesh, other, base.integrator, base.dt), f"{name}: {other}")
+        add(Combo(base.mesh, base.precision, "rk4", base.dt), f"{name}: rk4")
+        other_dt = 0.1 if base.dt == 0.05 else 0.05
+        add(Combo(base.mesh, base.precision, base.integrator, other_dt), f"{name}: dt {other_dt}")
+    for mesh in ("1500", "2400", "3840", "5400"):  # mesh error alone
+        add(Combo(mesh, "fast", "rk4", 0.025), f"mesh {mesh} at reference numerics")
+    for integ, dt in (("holloway", 0.1), ("holloway", 0.05), ("rk4", 0.1)):  # time error alone
+        add(Combo(REF_MESH, "fast", integ, dt), f"reference mesh, {integ} {dt}")
+    return roles
+
+
+def mesh_overrides(mesh: str) -> dict[str, int]:
+    return dict(zip(MESH_KEYS, MESHES[mesh], strict=True))
+
+
+def setup_for(c: Combo) -> ShipSetup:
+    """The environments' S175 setup (without propulsion/steering), surge/sway/yaw held."""
+    return ShipSetup(
+        hull="s175",
+        hull_overrides=mesh_overrides(c.mesh),
+        database="s175",
+        speed=SPEED,
+        radiation="state_space",
+        diffraction=True,
+        viscous_roll=True,
+        integrator=c.integrator,  # type: ignore[arg-type]
+        dt=c.dt,
+        fk_method=c.precision,  # type: ignore[arg-type]
+        free_dofs=FREE_DOFS,
+    )
+
+
+# ------------------------------------------------------------------------------ hydrostatics
+def hydrostatics_study(meshes: list[str], heels: np.ndarray, log=print) -> dict:
+    """Displacement, sinkage, GMt, GZ curve and vanishing angle per mesh, vs the reference."""
+    out: dict[str, dict] = {}
+    for name in meshes:
+        t0 = time.perf_counter()
+        hull = load_hull("s175", **mesh_overrides(name))
+        design = hydrostatics(hull)
+        eq = equilibrium(hull)
+        at_eq = hydrostatics(hull, heave=eq.heave, trim=eq.trim)
+        curve = righting_arm(hull, heels)
+        out[name] = {
+            "faces": int(hull.mesh.faces.shape[0]),
+            "mesh": list(MESHES[name]),
+            "displacement_design_t": design.displacement / 1e3,
+            "sinkage_m": eq.heave,
+            "trim_deg": math.degrees(eq.trim),
+            "gmt_m": at_eq.gmt,
+            "gz_m": curve.gz.tolist(),
+            "vanishing_angle_deg": curve.vanishing_angle_deg,
+            "max_gz_m": curve.max_gz,
+            "wall_s": time.perf_counter() - t0,
+        }
+        log(
+            f"[hydrostatics] {name:>5s} ({out[name]['faces']} faces): displacement "
+            f"{out[name]['displacement_design_t']:.1f} t, GMt {at_eq.gmt:.4f} m, vanishing "
+            f"{curve.vanishing_angle_deg:.2f} deg ({out[name]['wall_s']:.1f} s)"
+        )
+    ref = out[REF_MESH]
+    for v in out.values():
+        dgz = np.array(v["gz_m"]) - np.array(ref["gz_m"])
+        v["vs_reference"] = {
+            "displacement_rel": v["displacement_design_t"] / ref["displacement_design_t"] - 1.0,
+            "sinkage_mm": 1e3 * (v["sinkage_m"] - ref["sinkage_m"]),
+            "gmt_mm": 1e3 * (v["gmt_m"] - ref["gmt_m"]),
+            "gz_mm": (1e3 * dgz).tolist(),
+            "gz_max_abs_mm": float(1e3 * np.max(np.abs(dgz))),
+            "vanishing_angle_deg": v["vanishing_angle_deg"] - ref["vanishing_angle_deg"],
+        }
+    return {"heels_deg": heels.tolist(), "meshes": out}
+
+
+# ------------------------------------------------------------------------------- simulations
+def _build(c: Combo, wave_field) -> BatchSimulator:
+    return build_batch_simulator(setup_for(c), [wave_field])
+
+
+def _crossings(t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Times of the sign changes of x (linear interpolation)."""
+    i = np.flatnonzero(np.sign(x[:-1]) * np.sign(x[1:]) < 0.0)
+    return t[i] + (t[i + 1] - t[i]) * (x[i] / (x[i] - x[i + 1]))
+
+
+def _maxima(t: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Local maxima of x (parabola through the sample and its neighbours), t > 0 only."""
+    i = np.flatnonzero((x[1:-1] > x[:-2]) & (x[1:-1] >= x[2:])) + 1
+    a, b, c = x[i - 1], x[i], x[i + 1]
+    den = a - 2.0 * b + c
+    shift = np.where(den != 0.0, 0.5 * (a - c) / np.where(den != 0.0, den, 1.0), 0.0)
+    return t[i] + shift * (t[1] - t[0]), b - 0.25 * (a - c) * shift
+
+
+def roll_decay(c: Combo, duration: float) -> dict:
+    """Calm-water roll decay from φ₀ = 10° (heave, trim at the upright equilibrium)."""
+    sim = _build(c, None)
+    eta = sim.initial_eta.copy()
+    eta[3] = math.radians(ROLL0_DEG)
+    sim.reset(eta=eta)
+    t0 = time.perf_counter()
+    rec = sim.run(round(duration / c.dt))
+    wall = time.perf_counter() - t0
+    t = rec["t"][:, 0]
+    phi = np.degrees(rec["eta"][:, 0, 3])
+    cross = _crossings(t, phi)
+    t_max, phi_max = _maxima(t, phi)
+    ok = not bool(rec["diverged"][0]) and cross.size >= 7 and phi_max.size >= 3
+    every = round(SAMPLE_DT / c.dt)
+    return {
+        "period_s": float((cross[6] - cross[0]) / 3.0) if ok else math.nan,
+        "amplitude_3_cycles_deg": float(phi_max[2]) if ok else math.nan,
+        "time_3_cycles_s": float(t_max[2]) if ok else math.nan,
+        "diverged": bool(rec["diverged"][0]),
+        "wall_s": wall,
+        "t": t[::every].tolist(),
+        "roll_deg": phi[::every].tolist(),
+    }
+
+
+@dataclass(frozen=True)
+class WaveCase:
+    name: str
+    description: str
+    sea: RegularWave | IrregularSea
+    heading_deg: float
+    seed: int | None
+
+
+CASES = (
+    WaveCase(
+        "regular",
+        "regular H 2 m, lambda 175 m, beta 150 deg (bow sea)",
+        RegularWave(height=2.0, wavelength=LPP),
+        150.0,
+        None,
+    ),
+    WaveCase(
+        "irregular",
+        "JONSWAP Hs 4 m, Tp 11 s, 40 components, beta 60 deg (stern quartering)",
+        IrregularSea(hs=4.0, tp=11.0, n_components=40),
+        60.0,
+        SEED,
+    ),
+)
+
+
+def _field(case: WaveCase):
+    rng = None if case.seed is None else np.random.default_rng(case.seed)
+    return wave_field_for(case.sea, math.radians(case.heading_deg), rng)
+
+
+def wave_run(c: Combo, case: WaveCase, duration: float) -> dict:
+    """Heave [m], roll, pitch [deg] on the 0.1 s grid."""
+    sim = _build(c, _field(case))
+    every = round(SAMPLE_DT / c.dt)
+    t0 = time.perf_counter()
+    rec = sim.run(round(duration / c.dt), record_every=every)
+    wall = time.perf_counter() - t0
+    eta = rec["eta"][:, 0]
+    return {
+        "t": rec["t"][:, 0],
+        "x": {
+            "heave": eta[:, 2],
+            "roll": np.degrees(eta[:, 3]),
+            "pitch": np.degrees(eta[:, 4]),
+        },
+        "diverged": bool(rec["diverged"][0]),
+        "wall_s": wall,
+    }
+
+
+def wave_statistics(run: dict, t_start: float) -> dict[str, dict[str, float]]:
+    w = run["t"] >= t_start - 1e-9
+    out = {}
+    for name, x in run["x"].items():
+        if run["diverged"]:
+            out[name] = {"rms": math.nan, "amplitude": math.nan, "mean": math.nan}
+            continue
+        xw = x[w]
+        out[name] = {
+            "rms": float(np.std(xw)),
+            "amplitude": float(0.5 * (xw.max() - xw.min())),
+            "mean": float(np.mean(xw)),
+        }
+    return out
+
+
+def wave_errors(run: dict, ref: dict, t_start: float) -> dict[str, dict[str, float]]:
+    """Relative errors of RMS, amplitude and of the time series against the reference."""
+    if run["t"].shape != ref["t"].shape or not np.allclose(run["t"], ref["t"], atol=1e-6):
+        raise RuntimeError("sampling grids of run and reference differ")
+    s, r = wave_statistics(run, t_start), wave_statistics(ref, t_start)
+    w = ref["t"] >= t_start - 1e-9
+    out = {}
+    for name in DOFS:
+        if run["diverged"]:
+            out[name] = {"rms_rel": math.nan, "amplitude_rel": math.nan, "series_rel": math.nan}
+            continue
+        x, xr = run["x"][name][w], ref["x"][name][w]
+        series = np.sqrt(np.mean(((x - x.mean()) - (xr - xr.mean())) ** 2)) / r[name]["rms"]
+        out[name] = {
+            "rms_rel": s[name]["rms"] / r[name]["rms"] - 1.0,
+            "amplitude_rel": s[name]["amplitude"] / r[name]["amplitude"] - 1.0,
+            "series_rel": float(series),
+        }
+    return out
+
+
+def cost_study(combos: list[Combo], simulated: float, repeats: int = 3) -> dict[str, dict]:
+    """Wall and CPU time per simulated second, one ship in the irregular sea after its ramp;
+    the combinations are timed round-robin, ``repeats`` times, fastest kept."""
+    case = next(c for c in CASES if c.name == "irregular")
+    t_full = 1.2 * case.sea.ramp_time
+    sims = {}
+    for c in combos:
+        sim = _build(c, _field(case))
+        sim.reset(t0=t_full)
+        for _ in range(10):  # compilation, Holloway start-up
+            sim.step()
+        sims[c] = sim
+    wall: dict[Combo, list[float]] = {c: [] for c in combos}
+    cpu: dict[Combo, list[float]] = {c: [] for c in combos}
+    for _ in range(repeats):
+        for c, sim in sims.items():
+            n = round(simulated / c.dt)
+            w0, c0 = time.perf_counter(), time.process_time()
+            for _ in range(n):
+                sim.step()
+            wall[c].append((time.perf_counter() - w0) / (n * c.dt))
+            cpu[c].append((time.process_time() - c0) / (n * c.dt))
+    return {
+        c.label: {
+            "wall_s_per_simulated_s": float(min(wall[c])),
+            "cpu_s_per_simulated_s": float(min(cpu[c])),
+            "evaluations_per_simulated_s": (4 if c.integrator == "rk4" else 1) / c.dt,
+        }
+        for c in combos
+    }
+
+
+def batch_cost_study(
+    combos: list[Combo], n_ships: int, simulated: float, repeats: int = 3
+) -> dict[str, dict]:
+    """CPU time per ship and simulated second of a BatchSimulator of ``n_ships`` ships (each in
+    its own irregular sea, seeds SEED + i), as in a vector environment: the hull-panel kernel
+    then weighs more than the per-step overhead that dominates one ship."""
+    case = next(c for c in CASES if c.name == "irregular")
+    t_full = 1.2 * case.sea.ramp_time
+    angle = math.radians(case.heading_deg)
+    sims = {}
+    for c in combos:
+        fields = [
+            wave_field_for(case.sea, angle, np.random.default_rng(SEED + i)) for i in range(n_ships)
+        ]
+        sim = build_batch_simulator(setup_for(c), fields)
+        sim.reset(t0=t_full)
+        for _ in range(5):
+            sim.step()
+        sims[c] = sim
+    cpu: dict[Combo, list[float]] = {c: [] for c in combos}
+    for _ in range(repeats):
+        for c, sim in sims.items():
+            n = round(simulated / c.dt)
+            c0 = time.process_time()
+            for _ in range(n):
+                sim.step()
+            cpu[c].append((time.process_time() - c0) / (n * c.dt * n_ships))
+    return {c.label: {"cpu_s_per_ship_simulated_s": float(min(cpu[c]))} for c in combos}
+
+
+# ------------------------------------------------------------------------------------- study
+def run_study(quick: bool, log=print) -> dict:
+    t_begin = time.perf_counter()
+    roles = combinations(quick)
+    combos = list(roles)
+    decay_duration = 75.0
+    wave_duration = 120.0 if quick else 300.0
+    t_stats = 60.0 if quick else 100.0
+    heels = np.arange(0.0, 70.0 + 1e-9, 10.0 if quick else 2.5)
+
+    used = {c.mesh for c in combos} | {REF_MESH}
+    hydro_meshes = [m for m in MESHES if m in used] if quick else list(MESHES)
+    hydro = hydrostatics_study(hydro_meshes, heels, log)
+
+    decay_combos = combos + ([] if quick else [FINER])
+    decay = {}
+    for c in decay_combos:
+        decay[c.label] = d = roll_decay(c, decay_duration)
+        log(
+            f"[decay] {c.label:28s} T = {d['period_s']:.3f} s, phi after 3 cycles "
+            f"{d['amplitude_3_cycles_deg']:.3f} deg ({d['wall_s']:.1f} s)"
+        )
+    dref = decay[REFERENCE.label]
+    for d in decay.values():
+        d["period_rel"] = d["period_s"] / dref["period_s"] - 1.0
+        d["amplitude_rel"] = d["amplitude_3_cycles_deg"] / dref["amplitude_3_cycles_deg"] - 1.0
+        d["amplitude_diff_deg"] = d["amplitude_3_cycles_deg"] - dref["amplitude_3_cycles_deg"]
+
+    waves: dict[str, dict] = {}
+    records: dict[str, dict] = {}
+    for case in CASES:
+        case_combos = combos + ([] if quick else [FINER])
+        runs = {}
+        ref = runs[REFERENCE.label] = wave_run(REFERENCE, case, wave_duration)
+        log(f"[{case.name}] {REFERENCE.label:28s} ({ref['wall_s']:.1f} s)")
+        for c in case_combos:
+            if c == REFERENCE:
+                continue
+            runs[c.label] = r = wave_run(c, case, wave_duration)
+            err = wave_errors(r, ref, t_stats)
+            log(
+                f"[{case.name}] {c.label:28s} RMS error "
+                + ", ".join(f"{k} {100 * v['rms_rel']:+.3f} %" for k, v in err.items())
+                + f" ({r['wall_s']:.1f} s)"
+            )
+        waves[case.name] = {
+            "description": case.description,
+            "heading_deg": case.heading_deg,
+            "seed": case.seed,
+            "duration_s": wave_duration,
+            "statistics_from_s": t_stats,
+            "runs": {
+                label: {
+                    "statistics": wave_statistics(r, t_stats),
+                    "errors": wave_errors(r, ref, t_stats),
+                    "diverged": r["diverged"],
+                    "wall_s": r["wall_s"],
+                }
+                for label, r in runs.items()
+            },
+        }
+        keep = [c.label for c in (REFERENCE, *PLOTTED) if c.label in runs]
+        records[case.name] = {
+            label: {"t": runs[label]["t"].tolist(), "roll_deg": runs[label]["x"]["roll"].tolist()}
+            for label in keep
+        }
+
+    # other realisations of the irregular sea (seeds), a few combinations: is the roll RMS
+    # error of one realisation representative?
+    seed_check: dict[str, dict] = {}
+    if not quick:
+        irregular = next(c for c in CASES if c.name == "irregular")
+        subset = [REFERENCE, *PLOTTED, Combo(REF_MESH, "fast32", "holloway", 0.1)]
+        for seed in SEED_CHECK:
+            case = WaveCase(irregular.name, irregular.description, irregular.sea,
+                            irregular.heading_deg, seed)  # fmt: skip
+            ref = wave_run(REFERENCE, case, wave_duration)
+            seed_check[str(seed)] = {"reference": wave_statistics(ref, t_stats), "errors": {}}
+            for c in subset[1:]:
+                err = wave_errors(wave_run(c, case, wave_duration), ref, t_stats)
+                seed_check[str(seed)]["errors"][c.label] = err
+            log(
+                f"[irregular seed {seed}] roll RMS error "
+                + ", ".join(
+                    f"{k} {100 * v['roll']['rms_rel']:+.2f} %"
+                    for k, v in seed_check[str(seed)]["errors"].items()
+                )
+            )
+
+    cost = cost_study(combos, 5.0 if quick else 20.0)
+    base = cost[CURRENT.label]
+    for v in cost.values():
+        v["wall_ratio_to_current"] = v["wall_s_per_simulated_s"] / base["wall_s_per_simulated_s"]
+        v["cpu_ratio_to_current"] = v["cpu_s_per_simulated_s"] / base["cpu_s_per_simulated_s"]
+        v["realtime_factor_cpu"] = 1.0 / v["cpu_s_per_simulated_s"]
+    n_batch = 4 if quick else 16
+    batch_combos = [c for c in combos if c.integrator == "holloway"]
+    batch_cost = batch_cost_study(batch_combos, n_batch, 2.0 if quick else 5.0)
+    base_b = batch_cost[CURRENT.label]["cpu_s_per_ship_simulated_s"]
+    for label, v in batch_cost.items():
+        v["cpu_ratio_to_current"] = v["cpu_s_per_ship_simulated_s"] / base_b
+        cost[label]["batch"] = v
+    log("[cost] done")
+
+    return {
+        "measured_utc": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
+        "quick": quick,
+        "threads": 1,
+        "froude_number": FROUDE,
+        "speed_mps": SPEED,
+        "free_dofs": list(FREE_DOFS),
+        "reference": REFERENCE.label,
+        "current": CURRENT.label,
+        "candidate": CANDIDATE.label,
+        "recommended": RECOMMENDED.label,
+        "env_default_mesh_at_run_time": _env_default_mesh(),
+        "plotted": [c.label for c in PLOTTED],
+        "criteria": CRITERIA,
+        "roles": {c.label: r for c, r in roles.items()} | {FINER.label: ["finer mesh check"]},
+        "hydrostatics": hydro,
+        "decay": {"duration_s": decay_duration, "roll0_deg": ROLL0_DEG, "runs": decay},
+        "waves": waves,
+        "cost": cost,
+        "seed_check": seed_check,
+        "batch_cost_ships": n_batch,
+        "summary": summarise(combos, hydro, decay, waves, cost),
+        "records": records,
+        "load_average": list(os.getloadavg()),
+        "elapsed_s": time.perf_counter() - t_begin,
+    }
+
+
+def _env_default_mesh() -> list[int] | None:
+    """ship_gym.envs.ship_task.S175_MESH when the study ran (recorded, not used)."""
+    try:
+        from ship_gym.envs.ship_task import S175_MESH
+    except ImportError:
+        return None
+    return list(S175_MESH)
+
+
+PLOTTED = (CURRENT, CANDIDATE, Combo("2400", "fast32", "holloway", 0.1), RECOMMENDED)
+SEED_CHECK = (SEED + 1, SEED + 2)
+CRITERIA = {"roll_period_rel": 0.01, "rms_strict": 0.02, "rms_loose": 0.03, "gz_mm": 5.0}
+
+
+def passes(s: dict, rms_limit: float) -> bool:
+    """The acceptance criteria: |ΔT roll| ≤ 1 %, max |Δ RMS| ≤ rms_limit, max |ΔGZ| ≤ 5 mm."""
+    return bool(
+        abs(s["roll_period_rel"]) <= CRITERIA["roll_period_rel"]
+        and s["rms_max"] <= rms_limit
+        and s["gz_max_abs_mm"] <= CRITERIA["gz_mm"]
+    )
+
+
+def cheapest_passing(summary: dict[str, dict], rms_limit: float) -> str | None:
+    """The combination of least single-ship CPU time that meets the criteria."""
+    ok = [k for k, v in summary.items() if passes(v, rms_limit)]
+    return min(ok, key=lambda k: summary[k]["cpu_ratio_to_current"]) if ok else None
+
+
+def summarise(combos, hydro, decay, waves, cost) -> dict[str, dict]:
+    """Per combination: the error measures of the acceptance criteria and the cost ratio.
+
+    ``rms_max`` is the largest |RMS error| over heave, roll, pitch of both seas, except the
+    regular sea's roll (its RMS is a fraction of a degree, the leftover of the free-roll start-up
+    transient, not a response to the bow sea); ``rms_max_all`` includes it.
+    """
+    out = {}
+    for c in combos:
+        rms, rms_all, series = [], [], []
+        for case, res in waves.items():
+            for dof, e in res["runs"][c.label]["errors"].items():
+                rms_all.append(abs(e["rms_rel"]))
+                series.append(e["series_rel"])
+                if not (case == "regular" and dof == "roll"):
+                    rms.append(abs(e["rms_rel"]))
+        d = decay[c.label]
+        out[c.label] = {
+            "gz_max_abs_mm": hydro["meshes"][c.mesh]["vs_reference"]["gz_max_abs_mm"],
+            "gmt_mm": hydro["meshes"][c.mesh]["vs_reference"]["gmt_mm"],
+            "roll_period_rel": d["period_rel"],
+            "roll_amplitude_3_cycles_rel": d["amplitude_rel"],
+            "rms_max": float(np.max(rms)),
+            "rms_max_all": float(np.max(rms_all)),
+            "series_max": float(np.max(series)),
+            "cpu_ratio_to_current": cost[c.label]["cpu_ratio_to_current"],
+            "batch_cpu_ratio_to_current": cost[c.label]
+            .get("batch", {})
+            .get("cpu_ratio_to_current", math.nan),
+            "wall_ratio_to_current": cost[c.label]["wall_ratio_to_current"],
+        }
+        out[c.label]["passes_2pct"] = passes(out[c.label], CRITERIA["rms_strict"])
+        out[c.label]["passes_3pct"] = passes(out[c.label], CRITERIA["rms_loose"])
+    return out
+
+
+# ------------------------------------------------------------------------------------ output
+def _p(x: float, digits: int = 2) -> str:
+    return "div." if not np.isfinite(x) else f"{100 * x:+.{digits}f}"
+
+
+def markdown_tables(res: dict) -> str:
+    lines: list[str] = []
+    h = res["hydrostatics"]
+    lines += [
+        "### Hydrostatics (vs the 9600-face mesh)",
+        "",
+        "| mesh | faces | displacement at T [t] | Δ [%] | sinkage [mm] | Δ [mm] | GMt [m] "
+        "| ΔGMt [mm] | max abs ΔGZ 0–70° [mm] | vanishing [deg] | Δ [deg] |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for name, m in h["meshes"].items():
+        v = m["vs_reference"]
+        lines.append(
+            f"| {name} {tuple(m['mesh'])} | {m['faces']} | {m['displacement_design_t']:.1f} | "
+            f"{_p(v['displacement_rel'], 3)} | {1e3 * m['sinkage_m']:.1f} | "
+            f"{v['sinkage_mm']:+.1f} | {m['gmt_m']:.4f} | {v['gmt_mm']:+.1f} | "
+            f"{v['gz_max_abs_mm']:.1f} | {m['vanishing_angle_deg']:.2f} | "
+            f"{v['vanishing_angle_deg']:+.2f} |"
+        )
+    heels = h["heels_deg"]
+    show = [i for i, a in enumerate(heels) if a % 10 == 0 and a > 0]
+    lines += [
+        "",
+        "ΔGZ [mm] against the 9600-face mesh:",
+        "",
+        "| mesh | " + " | ".join(f"{heels[i]:g}°" for i in show) + " |",
+        "|---|" + "---|" * len(show),
+    ]
+    for name, m in h["meshes"].items():
+        dz = m["vs_reference"]["gz_mm"]
+        lines.append(f"| {name} | " + " | ".join(f"{dz[i]:+.1f}" for i in show) + " |")
+    ref_gz = h["meshes"][REF_MESH]["gz_m"]
+    lines.append("| GZ 9600 [m] | " + " | ".join(f"{ref_gz[i]:.4f}" for i in show) + " |")
+
+    lines += [
+        "",
+        "### Roll decay, calm water, φ0 = 10°, Fn 0.25",
+        "",
+        "| combination | role | T [s] | ΔT [%] | φ after 3 cycles [deg] | Δ [%] | Δ [deg] |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for label, d in res["decay"]["runs"].items():
+        role = ", ".join(res["roles"].get(label, []))
+        lines.append(
+            f"| {label} | {role} | {d['period_s']:.3f} | {_p(d['period_rel'])} | "
+            f"{d['amplitude_3_cycles_deg']:.3f} | {_p(d['amplitude_rel'])} | "
+            f"{d['amplitude_diff_deg']:+.4f} |"
+        )
+
+    for case, w in res["waves"].items():
+        ref = w["runs"][res["reference"]]["statistics"]
+        lines += [
+            "",
+            f"### {case}: {w['description']}, {w['duration_s']:g} s, statistics from "
+            f"t = {w['statistics_from_s']:g} s",
+            "",
+            "Reference: "
+            + ", ".join(
+                f"{k} RMS {ref[k]['rms']:.4f} {UNITS[k]}, amplitude {ref[k]['amplitude']:.4f} "
+                f"{UNITS[k]}"
+                for k in DOFS
+            ),
+            "",
+            "| combination | RMS heave [%] | RMS roll [%] | RMS pitch [%] | ampl. heave [%] "
+            "| ampl. roll [%] | ampl. pitch [%] | series heave [%] | series roll [%] "
+            "| series pitch [%] |",
+            "|---|---|---|---|---|---|---|---|---|---|",
+        ]
+        for label, r in w["runs"].items():
+            if label == res["reference"]:
+                continue
+            e = r["errors"]
+            lines.append(
+                f"| {label} | "
+                + " | ".join(_p(e[k]["rms_rel"]) for k in DOFS)
+                + " | "
+                + " | ".join(_p(e[k]["amplitude_rel"]) for k in DOFS)
+                + " | "
+                + " | ".join(f"{100 * e[k]['series_rel']:.2f}" for k in DOFS)
+                + " |"
+            )
+
+    if res.get("seed_check"):
+        labels = list(next(iter(res["seed_check"].values()))["errors"])
+        seeds = [str(SEED), *res["seed_check"]]
+        lines += [
+            "",
+            "### Irregular sea, other realisations (seeds): roll RMS error [%] (max abs of heave "
+            "and pitch in brackets)",
+            "",
+            "| combination | " + " | ".join(f"seed {k}" for k in seeds) + " |",
+            "|---|" + "---|" * len(seeds),
+        ]
+        irr = res["waves"]["irregular"]
+        refs = [irr["runs"][res["reference"]]["statistics"]] + [
+            v["reference"] for v in res["seed_check"].values()
+        ]
+        lines.append(
+            "| reference roll RMS [deg] | "
+            + " | ".join(f"{r['roll']['rms']:.2f}" for r in refs)
+            + " |"
+        )
+        for label in labels:
+            errs = [irr["runs"][label]["errors"]] + [
+                v["errors"][label] for v in res["seed_check"].values()
+            ]
+            cells = [
+                f"{_p(e['roll']['rms_rel'])} "
+                f"({100 * max(abs(e['heave']['rms_rel']), abs(e['pitch']['rms_rel'])):.2f})"
+                for e in errs
+            ]
+            lines.append(f"| {label} | " + " | ".join(cells) + " |")
+
+    lines += [
+        "",
+        "### Cost (one ship, BatchSimulator N = 1, irregular sea after the ramp; fastest of 3)",
+        "",
+        "| combination | eval/s | wall [ms per sim. s] | CPU [ms per sim. s] | real-time × (CPU) "
+        f"| CPU / current | batch of {res['batch_cost_ships']}: CPU [ms per ship-sim. s] "
+        "| batch CPU / current |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for label, v in res["cost"].items():
+        b = v.get("batch")
+        batch = (
+            f"{1e3 * b['cpu_s_per_ship_simulated_s']:.2f} | {b['cpu_ratio_to_current']:.2f}"
+            if b
+            else "– | –"
+        )
+        lines.append(
+            f"| {label} | {v['evaluations_per_simulated_s']:.0f} | "
+            f"{1e3 * v['wall_s_per_simulated_s']:.2f} | {1e3 * v['cpu_s_per_simulated_s']:.2f} | "
+            f"{v['realtime_factor_cpu']:.0f} | {v['cpu_ratio_to_current']:.2f} | {batch} |"
+        )
+
+    lines += [
+        "",
+        "### Summary against the criteria",
+        "",
+        "| combination | role | max abs ΔGZ [mm] | ΔT roll [%] | Δφ 3 cycles [%] "
+        "| max abs RMS err. [%] | incl. regular roll [%] | max series err. [%] "
+        "| CPU / current | batch CPU / current | meets (RMS ≤ 2 % / 3 %) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for label, s in res["summary"].items():
+        role = ", ".join(res["roles"].get(label, []))
+        lines.append(
+            f"| {label} | {role} | {s['gz_max_abs_mm']:.1f} | {_p(s['roll_period_rel'])} | "
+            f"{_p(s['roll_amplitude_3_cycles_rel'])} | {100 * s['rms_max']:.2f} | "
+            f"{100 * s['rms_max_all']:.2f} | {100 * s['series_max']:.2f} | "
+            f"{s['cpu_ratio_to_current']:.2f} | "
+            + ("–" if not np.isfinite(s["batch_cpu_ratio_to_current"])
+               else f"{s['batch_cpu_ratio_to_current']:.2f}")
+            + f" | {'yes' if s['passes_2pct'] else 'no'} / {'yes' if s['passes_3pct'] else 'no'} |"
+        )  # fmt: skip
+    lines.append("")
+    for limit in ("rms_strict", "rms_loose"):
+        best = cheapest_passing(res["summary"], CRITERIA[limit])
+        lines.append(
+            f"Cheapest combination (single-ship CPU) with |ΔT roll| ≤ 1 %, max |Δ RMS| ≤ "
+            f"{100 * CRITERIA[limit]:g} %, max |ΔGZ| ≤ 5 mm: {best or 'none'}"
+        )
+    return "\n".join(lines)
+
+
+def plot(res: dict, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import matplotlib.ticker
+
+    fig, axes = plt.subplots(2, 3, figsize=(17, 9.5))
+    (ax_gz, ax_cost, ax_sens), (ax_decay, ax_ddecay, ax_dirr) = axes
+    h = res["hydrostatics"]
+    heels = np.array(h["heels_deg"])
+    for name, m in h["meshes"].items():
+        if name == REF_MESH:
+            continue
+        ax_gz.plot(heels, m["vs_reference"]["gz_mm"], marker="o", ms=3, label=f"{m['faces']} faces")
+    ax_gz.axhline(0.0, color="k", lw=0.6)
+    for y in (-5.0, 5.0):
+        ax_gz.axhline(y, color="grey", ls=":", lw=0.8)
+    ax_gz.set_xlabel("heel angle φ [deg]")
+    ax_gz.set_ylabel("GZ − GZ(9600 faces) [mm]")
+    ax_gz.set_title("(a) righting-arm error of the mesh (calm water, free sinkage and trim)",
+                    fontsize=9)  # fmt: skip
+    ax_gz.grid(True, alpha=0.3)
+    ax_gz.legend(fontsize=8)
+
+    # (b) error against cost: colour = mesh, marker = integrator, filled = float32 wave sums
+    colours = dict(zip(MESHES, plt.rcParams["axes.prop_cycle"].by_key()["color"], strict=False))
+    floor = 1e-3  # [%]: errors below are drawn on this line
+    named = {res["current"]: "current", res["candidate"]: "candidate",
+             res["recommended"]: "recommended"}  # fmt: skip
+    for label, s in res["summary"].items():
+        if label == res["reference"]:
+            continue
+        mesh, precision, integrator, _ = label.split("/")
+        err = 100 * max(abs(s["roll_period_rel"]), s["rms_max"])
+        cpu = res["cost"][label]["cpu_s_per_simulated_s"] * 1e3
+        ax_cost.loglog(
+            cpu, max(err, floor), "o" if integrator == "holloway" else "s", ms=7,
+            color=colours[mesh], mfc=colours[mesh] if precision == "fast32" else "none",
+        )  # fmt: skip
+        if label in named:
+            text = f"{named.get(label, '')} {label}".strip()
+            ax_cost.annotate(text, (cpu, max(err, floor)), fontsize=6.5, xytext=(4, 3),
+                             textcoords="offset points")  # fmt: skip
+    for mesh, colour in colours.items():
+        if mesh == FINER_MESH:
+            continue
+        ax_cost.plot([], [], "o", color=colour, label=f"{mesh} faces")
+    ax_cost.plot([], [], "o", color="k", mfc="none", label="holloway, float64 (open)")
+    ax_cost.plot([], [], "s", color="k", label="rk4 (square), float32 (filled)")
+    for y, ls in ((1.0, ":"), (2.0, "--")):
+        ax_cost.axhline(y, color="grey", ls=ls, lw=0.8)
+    for axis in (ax_cost.xaxis, ax_cost.yaxis):
+        axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    ax_cost.set_xlabel("CPU time per simulated second, one ship [ms/s]")
+    ax_cost.set_ylabel("max(|ΔT roll|, max |Δ RMS motion|) vs reference [%]")
+    ax_cost.set_title(
+        "(b) error against cost (reference 9600/fast/rk4/0.025; errors < 0.001 % drawn at 0.001 %)",
+        fontsize=9,
+    )
+    ax_cost.grid(True, which="both", alpha=0.3)
+    ax_cost.legend(fontsize=7, loc="center right")
+
+    # (c) sensitivity of the resonant roll RMS to the roll period
+    irr = res["waves"]["irregular"]["runs"]
+    for label, s in res["summary"].items():
+        if label == res["reference"]:
+            continue
+        mesh = label.split("/")[0]
+        ax_sens.plot(100 * s["roll_period_rel"], 100 * irr[label]["errors"]["roll"]["rms_rel"],
+                      "o", color=colours[mesh])  # fmt: skip
+    fine = res["decay"]["runs"].get(FINER.label)
+    if fine is not None and FINER.label in irr:
+        ax_sens.plot(100 * fine["period_rel"], 100 * irr[FINER.label]["errors"]["roll"]["rms_rel"],
+                     "o", color=colours[FINER_MESH])  # fmt: skip
+    for mesh, colour in colours.items():
+        if mesh != REF_MESH:
+            ax_sens.plot([], [], "o", color=colour, label=f"{mesh} faces")
+    ax_sens.axhline(0.0, color="k", lw=0.6)
+    ax_sens.axvline(0.0, color="k", lw=0.6)
+    ax_sens.set_xlabel("roll period error ΔT / T, calm-water decay [%]")
+    ax_sens.set_ylabel("roll RMS error, irregular quartering sea [%]")
+    ax_sens.set_title("(c) near-resonant roll amplifies the period error", fontsize=9)
+    ax_sens.grid(True, alpha=0.3)
+    ax_sens.legend(fontsize=7)
+
+    decay = res["decay"]["runs"]
+    ref = decay[res["reference"]]
+    ax_decay.plot(ref["t"], ref["roll_deg"], "k-", lw=1.0, label=res["reference"])
+    ax_decay.set_xlabel("time t [s]")
+    ax_decay.set_ylabel("roll angle φ [deg]")
+    ax_decay.set_title("(d) roll decay in calm water, Fn 0.25, φ0 = 10° (reference)", fontsize=9)
+    ax_decay.grid(True, alpha=0.3)
+    ax_decay.legend(fontsize=8)
+    styles = ("b-", "r-", "g-", "m-")
+    for label, style in zip(res["plotted"], styles, strict=False):
+        if label not in decay:
+            continue
+        d = decay[label]
+        diff = np.array(d["roll_deg"]) - np.array(ref["roll_deg"])
+        ax_ddecay.plot(d["t"], diff, style, lw=0.9, label=label)
+    ax_ddecay.set_xlabel("time t [s]")
+    ax_ddecay.set_ylabel("φ − φ_ref [deg]")
+    ax_ddecay.set_title("(e) roll decay: difference to the reference", fontsize=9)
+    ax_ddecay.grid(True, alpha=0.3)
+    ax_ddecay.legend(fontsize=8)
+
+    rec = res["records"]["irregular"]
+    ref_rec = rec[res["reference"]]
+    for label, style in zip(res["plotted"], styles, strict=False):
+        if label in rec:
+            diff = np.array(rec[label]["roll_deg"]) - np.array(ref_rec["roll_deg"])
+            ax_dirr.plot(rec[label]["t"], diff, style, lw=0.7, label=label)
+    rms_ref = res["waves"]["irregular"]["runs"][res["reference"]]["statistics"]["roll"]["rms"]
+    ax_dirr.set_xlabel("time t [s]")
+    ax_dirr.set_ylabel("φ − φ_ref [deg]")
+    ax_dirr.set_title(
+        f"(f) roll in the irregular sea (Hs 4 m, β 60°) minus the reference (RMS {rms_ref:.1f}°)",
+        fontsize=9,
+    )
+    ax_dirr.grid(True, alpha=0.3)
+    ax_dirr.legend(fontsize=8)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def _jsonable(x):
+    if isinstance(x, dict):
+        return {k: _jsonable(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [_jsonable(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return _jsonable(x.tolist())
+    if isinstance(x, np.floating | np.integer | np.bool_):
+        return _jsonable(x.item())
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    return x
+
+
+def _from_json(x):
+    if isinstance(x, dict):
+        return {k: _from_json(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_from_json(v) for v in x]
+    return math.nan if x is None else x
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="≈ 1 min smoke run")
+    parser.add_argument("--json", type=Path, default=None, help="write the numbers here")
+    parser.add_argument(
+        "--output",
+        type=Path,
+        default=None,
+        help="figure (default docs/accuracy/accuracy.png; with --quick out/accuracy_quick.png, "
+        "so that a smoke run never overwrites the documented figure)",
+    )
+    parser.add_argument(
+        "--replot", type=Path, default=None, help="redo tables and figure from a --json file"
+    )
+    args = parser.parse_args(argv)
+    if args.output is None:
+        args.output = Path("out/accuracy_quick.png" if args.quick else "docs/accuracy/accuracy.png")
+    if args.replot is not None:
+        res = _from_json(json.loads(args.replot.read_text()))
+        print(markdown_tables(res))
+        plot(res, args.output)
+        print(f"figure: {args.output}")
+        return 0
+    with threadpool_limits(limits=1):
+        res = run_study(args.quick)
+    print()
+    print(markdown_tables(res))
+    print(
+        f"\ntotal {res['elapsed_s']:.0f} s; load average {res['load_average'][0]:.2f}; "
+        f"environments' S175_MESH at run time: {res['env_default_mesh_at_run_time']}"
+    )
+    plot(res, args.output)
+    print(f"figure: {args.output}")
+    if args.json is not None:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(json.dumps(_jsonable(res), indent=1) + "\n")
+        print(f"numbers: {args.json}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
