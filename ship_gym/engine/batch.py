@@ -67,7 +67,6 @@ import copy
 import math
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal
 
 import numba as nb
@@ -75,10 +74,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ship_gym.conventions import ROLL, SURGE
+from ship_gym.engine.batch_control import batch_control_model, trim_batch_shaft_speed
+from ship_gym.engine.rigid_body import healthy_state, rigid_body_terms
 from ship_gym.engine.ship import Sea, ShipSetup, build_force_models
 from ship_gym.engine.simulator import left_hand_side
-from ship_gym.forces.base import ForceContext, ForceModel
-from ship_gym.forces.diffraction import Diffraction
+from ship_gym.forces.base import (
+    BatchContext,
+    BatchForceModel,
+    BatchWaves,
+    ForceContext,
+    ForceModel,
+)
+from ship_gym.forces.diffraction import Diffraction, diffraction_force
 from ship_gym.forces.froude_krylov import (
     FroudeKrylovHydrostatics,
     HullPanels,
@@ -86,7 +93,11 @@ from ship_gym.forces.froude_krylov import (
     froude_krylov_hydrostatic,
     froude_krylov_hydrostatic_batch,
 )
-from ship_gym.forces.radiation import ConstantCoefficientRadiation, RadiationMemory
+from ship_gym.forces.radiation import (
+    ConstantCoefficientRadiation,
+    RadiationMemory,
+    state_space_radiation,
+)
 from ship_gym.forces.viscous import ViscousRollDamping
 from ship_gym.hull import equilibrium, load_hull
 from ship_gym.hull.hull import Hull
@@ -172,132 +183,9 @@ class _Seas:
         self.n_components[ship] = m
 
 
-@dataclass
-class BatchWaves:
-    """Per-row wave component arrays of the ships in a :class:`BatchContext` (zero-padded).
-
-    Attributes
-    ----------
-    wavenumber, omega, direction : numpy.ndarray
-        (n, n_comp) kⱼ [rad/m], ωⱼ [rad/s], χⱼ [rad].
-    cos_direction, sin_direction : numpy.ndarray
-        (n, n_comp) cos χⱼ, sin χⱼ.
-    kx, ky : numpy.ndarray
-        (n, n_comp) kⱼ cos χⱼ, kⱼ sin χⱼ [rad/m].
-    n_components : numpy.ndarray
-        (n,) number of real (unpadded) components of each ship's sea.
-    """
-
-    wavenumber: NDArray
-    omega: NDArray
-    direction: NDArray
-    cos_direction: NDArray
-    sin_direction: NDArray
-    kx: NDArray
-    ky: NDArray
-    n_components: NDArray
-
-
-@dataclass
-class BatchContext:
-    """Quantities shared by the batch force models at one evaluation (rows = ``ships``).
-
-    Attributes
-    ----------
-    ships : numpy.ndarray
-        (n,) indices into the batch of the rows evaluated (all ships, or a subset: ships in
-        their integrator start-up, or the ships not frozen by divergence).
-    all_ships : bool
-        True when the rows are exactly ships 0…N−1 (models may skip fancy indexing).
-    t : numpy.ndarray
-        (n,) times [s] (each ship has its own clock).
-    eta, nu : numpy.ndarray
-        (n, 6) positions/Euler angles and body velocities.
-    rotation : numpy.ndarray
-        (n, 3, 3) body-to-earth rotation matrices.
-    forward_speed : float
-        Steady forward speed U [m/s] (shared).
-    wave_phasor : numpy.ndarray
-        (n, n_comp) complex cⱼ(t) [m], ramp included (zeros for padding and calm seas).
-    local_phasor : numpy.ndarray
-        (n, n_comp) the phasors folded to each ship's O, c'ⱼ = cⱼ(t) e^{−i kⱼ (x cos χⱼ +
-        y sin χⱼ)} (:meth:`WaveComponents.local_amplitudes`): ζ(O, t) = Re Σⱼ c'ⱼ.
-    waves : BatchWaves
-        The rows' wave component arrays.
-    commands : dict
-        Actuator commands: arrays with a leading axis over **all** N ships (take
-        ``value[ctx.ships]``, :meth:`rows`) or scalars shared by all ships.
-    shared : dict
-        Quantities a model derives during this evaluation for the models after it (fresh at
-        every evaluation, like :attr:`ForceContext.shared`); :class:`PerShipForceModel` keeps
-        one dict per ship in it.
-    """
-
-    ships: NDArray[np.int64]
-    all_ships: bool
-    t: NDArray
-    eta: NDArray
-    nu: NDArray
-    rotation: NDArray
-    forward_speed: float
-    wave_phasor: NDArray
-    local_phasor: NDArray
-    waves: BatchWaves
-    commands: dict = field(default_factory=dict)
-    shared: dict = field(default_factory=dict)
-
-    def rows(self, array: NDArray) -> NDArray:
-        """``array[ships]`` for an array with a leading axis over all N ships."""
-        return array if self.all_ships else array[self.ships]
-
-    @property
-    def n(self) -> int:
-        """Number of rows."""
-        return int(self.t.shape[0])
-
-
 # =============================================================================================
 # batch force models
 # =============================================================================================
-class BatchForceModel:
-    """Protocol of force models acting on many ships at once (subclass and override).
-
-    Like :class:`ship_gym.forces.base.ForceModel` with a leading batch axis: ``evaluate``
-    returns body-axis forces about O, (n, 6), and state derivatives (n, n_states) for the rows
-    of the context. Per-ship internal data (caches, histories) is indexed by ``ctx.ships``.
-
-    Attributes
-    ----------
-    name : str
-        Key of the force in breakdowns.
-    n_states : int
-        Extra first-order states per ship.
-    added_mass : numpy.ndarray or None
-        (6, 6) instantaneous added mass moved to the left-hand side (shared by all ships).
-    """
-
-    name: str = "force"
-    n_states: int = 0
-    added_mass: NDArray | None = None
-
-    def bind(self, n_ships: int, n_comp: int) -> None:
-        """Called once by the simulator: batch size and padded wave component count."""
-
-    def initial_states(self, ships: NDArray[np.int64]) -> NDArray:
-        """(len(ships), n_states) initial values of the states of ``ships`` (default zeros)."""
-        return np.zeros((len(ships), self.n_states))
-
-    def reset(self, ships: NDArray[np.int64], ctx: BatchContext) -> None:
-        """Forget the memory of ``ships`` (a reset of those ships at ``ctx.t``)."""
-
-    def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
-        """(n, 6) body-axis force and moment about O, and (n, n_states) state derivatives."""
-        raise NotImplementedError
-
-    def commit(self, ctx: BatchContext, states: NDArray) -> None:
-        """Record accepted steps of the rows of ``ctx`` (state at the end of the step)."""
-
-
 def _no_states(n: int) -> NDArray:
     return np.zeros((n, 0))
 
@@ -403,24 +291,17 @@ def _csr(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
 
 @nb.njit(cache=True)
 def _state_space_rows(
-    z, vp, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, force, zdot
-):  # pragma: no cover - compiled
-    """zdot = A z + B v_p and force = −C z per ship (rows), A, B, C in CSR form."""
-    n_ss = a_ptr.shape[0] - 1
-    n_out = c_ptr.shape[0] - 1
+    v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
+    force, zdot,
+):  # fmt: skip  # pragma: no cover - compiled
+    """:func:`ship_gym.forces.radiation.state_space_radiation` per row (force zeroed first)."""
     for s in range(z.shape[0]):
-        for i in range(n_ss):
-            acc = 0.0
-            for p in range(a_ptr[i], a_ptr[i + 1]):
-                acc += a_val[p] * z[s, a_idx[p]]
-            for p in range(b_ptr[i], b_ptr[i + 1]):
-                acc += b_val[p] * vp[s, b_idx[p]]
-            zdot[s, i] = acc
-        for o in range(n_out):
-            acc = 0.0
-            for p in range(c_ptr[o], c_ptr[o + 1]):
-                acc += c_val[p] * z[s, c_idx[p]]
-            force[s, o] = -acc
+        for o in range(6):
+            force[s, o] = 0.0
+        state_space_radiation(
+            v[s], z[s], speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val,
+            d_mat, has_d, force[s], zdot[s],
+        )  # fmt: skip
 
 
 class BatchStateSpaceRadiation(BatchForceModel):
@@ -452,7 +333,7 @@ class BatchStateSpaceRadiation(BatchForceModel):
         self._a = _csr(a)
         self._b = _csr(b)
         self._c = _csr(c)
-        self._dt = np.ascontiguousarray(d.T)
+        self._d = np.ascontiguousarray(d)
         self._has_d = bool(np.any(d != 0.0))
         self.n_states = int(n)
         self.added_mass = np.asarray(a_inf, float)
@@ -473,15 +354,12 @@ class BatchStateSpaceRadiation(BatchForceModel):
         return cls(ss.A, ss.B, ss.C, ss.D, model.A_inf)
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
-        vp = ctx.nu.copy()
-        vp[:, SURGE] -= ctx.forward_speed
         force = np.empty((ctx.n, 6))
         zdot = np.empty((ctx.n, self.n_states))
         _state_space_rows(
-            np.ascontiguousarray(states), vp, *self._a, *self._b, *self._c, force, zdot
-        )
-        if self._has_d:
-            force -= vp @ self._dt
+            ctx.nu, np.ascontiguousarray(states), ctx.forward_speed, *self._a, *self._b,
+            *self._c, self._d, self._has_d, force, zdot,
+        )  # fmt: skip
         return force, zdot
 
 
@@ -520,17 +398,13 @@ def _stale_headings(ships, psi, psi_ref, u_ref, speed, tol, out):  # pragma: no 
 
 
 @nb.njit(cache=True)
-def _diffraction_rows(ships, local, xd, dxd, dpsi, out):  # pragma: no cover - compiled
-    """F_D = Re Σⱼ conj(c'ⱼ) (X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ) per row (X_D cached per ship)."""
+def _diffraction_rows(ships, psi, local, xd, dxd, psi_ref, out):  # pragma: no cover - compiled
+    """:func:`ship_gym.forces.diffraction.diffraction_force` per row (X_D cached per ship)."""
     for r in range(ships.shape[0]):
         s = ships[r]
-        for k in range(6):
-            acc = 0.0
-            for j in range(local.shape[1]):
-                c = local[r, j]
-                x = xd[s, j, k] + dpsi[r] * dxd[s, j, k]
-                acc += c.real * x.real + c.imag * x.imag
-            out[r, k] = acc
+        for o in range(6):
+            out[r, o] = 0.0
+        diffraction_force(psi[r], local[r], xd[s], dxd[s], psi_ref[s : s + 1], out[r])
 
 
 class BatchDiffraction(BatchForceModel):
@@ -595,8 +469,9 @@ class BatchDiffraction(BatchForceModel):
             rows = np.flatnonzero(stale)
             self._refresh(ctx.ships[rows], psi[rows], ctx, rows)
         force = np.empty((ctx.n, 6))
-        dpsi = np.mod(psi - self._psi_ref[ctx.ships] + np.pi, _TWO_PI) - np.pi
-        _diffraction_rows(ctx.ships, ctx.local_phasor, self._xd, self._dxd, dpsi, force)
+        _diffraction_rows(
+            ctx.ships, psi, ctx.local_phasor, self._xd, self._dxd, self._psi_ref, force
+        )
         return force, _no_states(ctx.n)
 
 
@@ -708,8 +583,6 @@ def batch_force_models(models: Sequence[ForceModel]) -> list[BatchForceModel]:
     passed through. Anything else (added resistance in waves) raises ``NotImplementedError``
     (wrap one instance per ship in :class:`PerShipForceModel`).
     """
-    from ship_gym.engine.batch_control import batch_control_model  # imports this module
-
     out: list[BatchForceModel] = []
     for m in models:
         if isinstance(m, BatchForceModel):
@@ -739,60 +612,12 @@ def batch_force_models(models: Sequence[ForceModel]) -> list[BatchForceModel]:
 # vectorised rigid-body terms
 # =============================================================================================
 @nb.njit(cache=True)
-def _ship_terms(eta, nu, mass, weight, cog, rot, total, qdot):  # pragma: no cover - compiled
-    """Per ship: rotation R(φ, θ, ψ), gravity − Coriolis (body axes, about O) and η̇ = J(η) ν.
-
-    ``mass`` (n, 6, 6) M_RB about O and ``cog`` (n, 3) G of each row (per-ship loading,
-    :meth:`BatchSimulator.set_centre_of_gravity`); ``weight`` m g [N] shared.
-
-    The arithmetic of :func:`ship_gym.kinematics.rotation_matrix`,
-    :func:`ship_gym.engine.rigid_body.gravity_force`, ``coriolis_force`` and ``kinematics``
-    fused in one loop; a row of η̇ is NaN where the Euler-rate matrix is singular (|cos θ| <
-    1e-9), which the step reports as a divergence.
-    """
-    h = np.empty(6)
+def _ship_terms(eta, nu, mass, weight, cog, held, rot, total, qdot):  # pragma: no cover
+    """:func:`ship_gym.engine.rigid_body.rigid_body_terms` per row: R(φ, θ, ψ), gravity −
+    Coriolis (body axes, about O) and η̇ = J(η) ν (0 for a held angle), with ``mass``
+    (n, 6, 6) M_RB about O and ``cog`` (n, 3) G of each row (per-ship loading)."""
     for s in range(eta.shape[0]):
-        cphi, sphi = math.cos(eta[s, 3]), math.sin(eta[s, 3])
-        cth, sth = math.cos(eta[s, 4]), math.sin(eta[s, 4])
-        cpsi, spsi = math.cos(eta[s, 5]), math.sin(eta[s, 5])
-        r = rot[s]
-        r[0, 0] = cpsi * cth
-        r[0, 1] = -spsi * cphi + cpsi * sth * sphi
-        r[0, 2] = spsi * sphi + cpsi * cphi * sth
-        r[1, 0] = spsi * cth
-        r[1, 1] = cpsi * cphi + sphi * sth * spsi
-        r[1, 2] = -cpsi * sphi + sth * spsi * cphi
-        r[2, 0] = -sth
-        r[2, 1] = cth * sphi
-        r[2, 2] = cth * cphi
-        # weight m g along earth +z, at G: Rᵀ (0, 0, m g) and G × it
-        fx, fy, fz = r[2, 0] * weight, r[2, 1] * weight, r[2, 2] * weight
-        # Coriolis–centripetal C_RB(ν) ν = [ν₂ × h₁ ; ν₁ × h₁ + ν₂ × h₂], h = M_RB ν
-        for i in range(6):
-            acc = 0.0
-            for j in range(6):
-                acc += mass[s, i, j] * nu[s, j]
-            h[i] = acc
-        u, v, w, p, q, rr = nu[s, 0], nu[s, 1], nu[s, 2], nu[s, 3], nu[s, 4], nu[s, 5]
-        total[s, 0] = fx - (q * h[2] - rr * h[1])
-        total[s, 1] = fy - (rr * h[0] - p * h[2])
-        total[s, 2] = fz - (p * h[1] - q * h[0])
-        xg, yg, zg = cog[s, 0], cog[s, 1], cog[s, 2]
-        total[s, 3] = (yg * fz - zg * fy) - ((v * h[2] - w * h[1]) + (q * h[5] - rr * h[4]))
-        total[s, 4] = (zg * fx - xg * fz) - ((w * h[0] - u * h[2]) + (rr * h[3] - p * h[5]))
-        total[s, 5] = (xg * fy - yg * fx) - ((u * h[1] - v * h[0]) + (p * h[4] - q * h[3]))
-        # kinematics: R ν₁ and T(φ, θ) ν₂
-        for i in range(3):
-            qdot[s, i] = r[i, 0] * u + r[i, 1] * v + r[i, 2] * w
-        if abs(cth) < 1e-9:
-            qdot[s, 3] = np.nan
-            qdot[s, 4] = np.nan
-            qdot[s, 5] = np.nan
-        else:
-            tth = math.tan(eta[s, 4])
-            qdot[s, 3] = p + sphi * tth * q + cphi * tth * rr
-            qdot[s, 4] = cphi * q - sphi * rr
-            qdot[s, 5] = sphi / cth * q + cphi / cth * rr
+        rigid_body_terms(eta[s], nu[s], mass[s], weight, cog[s], held, rot[s], total[s], qdot[s])
 
 
 @nb.njit(cache=True)
@@ -901,16 +726,9 @@ def _holloway_rows(
 
 @nb.njit(cache=True)
 def _healthy_rows(q, v, z, v_max, ok):  # pragma: no cover - compiled
-    """ok[r]: the row's q, v, z are finite and max |v| ≤ v_max (the single-ship test)."""
+    """ok[r]: :func:`ship_gym.engine.rigid_body.healthy_state` of row r."""
     for r in range(q.shape[0]):
-        good = True
-        for i in range(q.shape[1]):
-            good &= np.isfinite(q[r, i])
-        for i in range(v.shape[1]):
-            good &= abs(v[r, i]) <= v_max  # False for NaN
-        for i in range(z.shape[1]):
-            good &= np.isfinite(z[r, i])
-        ok[r] = good
+        ok[r] = healthy_state(q[r], v[r], z[r], v_max)
 
 
 # =============================================================================================
@@ -1228,8 +1046,7 @@ class BatchSimulator:
             mass_rb, cog = self._ship_mass_rb, self._ship_cog
         else:
             mass_rb, cog = self._ship_mass_rb[ships], self._ship_cog[ships]
-        _ship_terms(eta, nu, mass_rb, self._weight, cog, rot, rigid, qdot)
-        qdot[:, 3:][:, self._held_angles] = 0.0  # a held rotation holds its Euler angle
+        _ship_terms(eta, nu, mass_rb, self._weight, cog, self._held_angles, rot, rigid, qdot)
         seas = self._seas
         if all_ships:
             waves = self._waves_all
@@ -1775,7 +1592,6 @@ def build_batch_simulator(
     balance at its initial state, as :func:`ship_gym.engine.ship.build_simulator` does
     (:func:`ship_gym.engine.batch_control.trim_batch_shaft_speed`).
     """
-    from ship_gym.engine.batch_control import trim_batch_shaft_speed  # imports this module
     from ship_gym.forces.propeller import Propeller
 
     if control not in ("batch", "per_ship"):

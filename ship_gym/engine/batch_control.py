@@ -54,12 +54,11 @@ from ship_gym.control.actuators import (
     actuator_commit_rows,
 )
 from ship_gym.conventions import SURGE
-from ship_gym.engine.batch import BatchContext, BatchForceModel
-from ship_gym.forces.base import ForceModel
+from ship_gym.forces.base import BatchContext, BatchForceModel, ForceModel
 from ship_gym.forces.fins import RollFins, SternFlaps, TFoil
-from ship_gym.forces.lifting_surface import SurfaceGroup
-from ship_gym.forces.manoeuvring import HullManoeuvring
-from ship_gym.forces.propeller import SHAFT_SPEED_COMMAND, Propeller
+from ship_gym.forces.lifting_surface import SurfaceGroup, surface_group_force
+from ship_gym.forces.manoeuvring import HullManoeuvring, manoeuvring_force
+from ship_gym.forces.propeller import SHAFT_SPEED_COMMAND, Propeller, propeller_force
 from ship_gym.forces.resistance import CalmWaterResistance
 from ship_gym.forces.rudder import Rudder
 
@@ -170,51 +169,6 @@ class BatchResistance(BatchForceModel):
         return force, _no_states(ctx.n)
 
 
-@nb.njit(cache=True)
-def _kt_kq(j, kt_c, kq_c, j0):  # pragma: no cover - compiled
-    """WageningenB.coefficients_extended (polynomial on [0, J₀], linear outside)."""
-    if j < 0.0:
-        return kt_c[0] + kt_c[1] * j, kq_c[0] + kq_c[1] * j
-    if j > j0:
-        dkt = kt_c[1] + j0 * (2.0 * kt_c[2] + 3.0 * j0 * kt_c[3])
-        dkq = kq_c[1] + j0 * (2.0 * kq_c[2] + 3.0 * j0 * kq_c[3])
-        kq0 = kq_c[0] + j0 * (kq_c[1] + j0 * (kq_c[2] + j0 * kq_c[3]))
-        return dkt * (j - j0), kq0 + dkq * (j - j0)
-    kt = kt_c[0] + j * (kt_c[1] + j * (kt_c[2] + j * kt_c[3]))
-    kq = kq_c[0] + j * (kq_c[1] + j * (kq_c[2] + j * kq_c[3]))
-    return kt, kq
-
-
-@nb.njit(cache=True, nogil=True)
-def propeller_force(
-    u, n, kt_c, kq_c, j0, diameter, rho_d4, one_minus_w, one_minus_t, eta_r, astern, z_p, y_p,
-    roll_sign, out,
-):  # fmt: skip  # pragma: no cover - compiled
-    """Propeller.evaluate for one ship: X = (1 − t) T(n, (1 − w) u) at r_P, roll reaction
-    optional; writes out (6,) and returns the open-water thrust T [N]."""
-    va = one_minus_w * u
-    if abs(n) < 1e-12:
-        thrust, torque = 0.0, 0.0
-    else:
-        sign = 1.0
-        if n < 0.0:  # mirror image of the ahead curves (Propeller.thrust_torque)
-            n, va, sign = -n, -va, -1.0
-        kt, kq = _kt_kq(va / (n * diameter), kt_c, kq_c, j0)
-        thrust = rho_d4 * n * n * kt
-        torque = rho_d4 * diameter * n * n * kq
-        if sign < 0.0:
-            thrust = -astern * thrust
-            torque = -torque
-    x = one_minus_t * thrust
-    out[0] = x
-    out[1] = 0.0
-    out[2] = 0.0
-    out[3] = roll_sign * (torque / eta_r)
-    out[4] = z_p * x
-    out[5] = -y_p * x
-    return thrust
-
-
 @nb.njit(cache=True, nogil=True)
 def _propeller_rows(u, shaft, params, force, thrust_out):  # pragma: no cover - compiled
     """:func:`propeller_force` per row (params: the tuple of :attr:`BatchPropeller.params`)."""
@@ -231,30 +185,11 @@ class BatchPropeller(BatchForceModel):
     """
 
     def __init__(self, model: Propeller) -> None:
-        ow = model.open_water
         self.propeller = model
         """The single-ship model (self-propulsion helpers, operating points)."""
         self.name = model.name
         self.default_shaft_speed = model.shaft_speed
-        self._kt = np.array(ow.kt_coefficients, dtype=float)
-        self._kq = np.array(ow.kq_coefficients, dtype=float)
-        self._j0 = float(ow.j_zero_thrust)
-        self._d = float(model.diameter)
-        self._rho_d4 = float(model._rho_d4)
-        self._one_minus_w = 1.0 - model.wake_fraction
-        self._one_minus_t = 1.0 - model.thrust_deduction
-        self._eta_r = float(model.relative_rotative_efficiency)
-        self._astern = float(model.astern_thrust_factor)
-        self._z_p = float(model.position[2])
-        self._y_p = float(model.position[1])
-        if not model.roll_reaction:
-            self._roll_sign = 0.0
-        else:
-            self._roll_sign = -1.0 if model.handedness == "right" else 1.0
-        self.params = (
-            self._kt, self._kq, self._j0, self._d, self._rho_d4, self._one_minus_w,
-            self._one_minus_t, self._eta_r, self._astern, self._z_p, self._y_p, self._roll_sign,
-        )  # fmt: skip
+        self.params = model.kernel_parameters()
         """The arguments of :func:`propeller_force` after (u, n)."""
 
     @classmethod
@@ -277,31 +212,6 @@ class BatchPropeller(BatchForceModel):
 
 
 @nb.njit(cache=True, nogil=True)
-def manoeuvring_force(nu, c_yv, c_yr, c_nv, c_nr, cda, x, crossflow, roll_lever, out):
-    """HullManoeuvring.evaluate for one ship: eq. (1) + eq. (3), K = −z_H Y; writes out (6,)."""
-    u, v, r = nu[0], nu[1], nu[5]
-    au = abs(u)
-    y = c_yv * au * v + c_yr * u * r
-    n = c_nv * u * v + c_nr * au * r
-    if crossflow:
-        yc = 0.0
-        nc = 0.0
-        for k in range(x.shape[0]):
-            vl = v + x[k] * r
-            f = cda[k] * abs(vl) * vl
-            yc += f
-            nc += f * x[k]
-        y += -yc
-        n += -nc
-    out[0] = 0.0
-    out[1] = y
-    out[2] = 0.0
-    out[3] = -roll_lever * y
-    out[4] = 0.0
-    out[5] = n
-
-
-@nb.njit(cache=True, nogil=True)
 def _manoeuvring_rows(nu, params, force):  # pragma: no cover - compiled
     """:func:`manoeuvring_force` per row."""
     for i in range(nu.shape[0]):
@@ -317,12 +227,7 @@ class BatchHullManoeuvring(BatchForceModel):
 
     def __init__(self, model: HullManoeuvring) -> None:
         self.name = model.name
-        self._c = (model._c_yv, model._c_yr, model._c_nv, model._c_nr)
-        self._cda = np.ascontiguousarray(model._cda, dtype=float)
-        self._x = np.ascontiguousarray(model._x, dtype=float)
-        self._crossflow = bool(model.crossflow)
-        self._roll_lever = float(model.roll_lever)
-        self.params = (*self._c, self._cda, self._x, self._crossflow, self._roll_lever)
+        self.params = model.kernel_parameters()
         """The arguments of :func:`manoeuvring_force` after ν."""
 
     @classmethod
@@ -339,113 +244,6 @@ class BatchHullManoeuvring(BatchForceModel):
 # =============================================================================================
 # lifting surfaces behind a servo
 # =============================================================================================
-@nb.njit(cache=True)
-def _coefficients(alpha, lift_slope, a_s, transition, cd0, k_induced, cn):  # pragma: no cover
-    """LiftingSurface._coefficients: (C_L, C_D), eq. (3)–(6) of the lifting-surface module."""
-    a = alpha - math.pi * round(alpha / math.pi)
-    s = 1.0 if a >= 0.0 else -1.0
-    a = abs(a)
-    if a <= a_s:
-        cl = lift_slope * a
-        return s * cl, cd0 + k_induced * cl * cl
-    sin_a = math.sin(a)
-    cl_plate = cn * sin_a * math.cos(a)
-    cd_plate = cd0 + cn * sin_a * sin_a
-    if a >= a_s + transition:
-        return s * cl_plate, cd_plate
-    sigma = 0.5 * (1.0 - math.cos(math.pi * (a - a_s) / transition))
-    cl_max = lift_slope * a_s
-    cd_max = cd0 + k_induced * cl_max * cl_max
-    cl = (1.0 - sigma) * cl_max + sigma * cl_plate
-    cd = (1.0 - sigma) * cd_max + sigma * cd_plate
-    return s * cl, cd
-
-
-@nb.njit(cache=True)
-def _slipstream_speed(u_a, thrust, diameter, distance, rho, span):  # pragma: no cover
-    """u_R of eq. (4) of the rudder module: rudder._slipstream (eq. 3) and the span fraction."""
-    r0 = 0.5 * diameter
-    u_inf = math.sqrt(u_a * u_a + 8.0 * thrust / (rho * math.pi * diameter * diameter))
-    v_x = u_a + (u_inf - u_a) * 0.5 * (1.0 + distance / math.sqrt(distance**2 + r0 * r0))
-    if v_x <= 0.0:
-        v_x, r_x = 0.0, r0
-    else:
-        r_x = r0 * math.sqrt(0.5 * (u_a + u_inf) / v_x)
-    fraction = min(1.0, 2.0 * r_x / span)
-    return math.sqrt(fraction * v_x * v_x + (1.0 - fraction) * u_a * u_a)
-
-
-@nb.njit(cache=True, nogil=True)
-def surface_group_force(
-    nu, d, inflow, wake, gamma_v, gamma_r, prop_d, prop_x, thrust_mode, thrust,
-    pos, axis, chord, lead, area, span, rho, lift_slope, stall, transition, cd0, k_induced,
-    cn, k0, k1, out,
-):  # fmt: skip  # pragma: no cover - compiled
-    """SurfaceGroup.evaluate for one ship: Σ over surfaces k0 ≤ k < k1 of
-    LiftingSurface.components at the applied angle ``d`` [rad]; writes out (6,).
-
-    Inflow: ``_INFLOW_RUDDER`` — Rudder._inflow (eq. 1–4 of the rudder module: wake, actuator-
-    disk slipstream of the thrust, flow straightening); ``_INFLOW_RIGID`` — the rigid-body
-    velocity v + ω × r with the axial part scaled by 1 − w (fins, foil, flaps). ``thrust``:
-    the propeller thrust [N] (mode 1) or C_Th (mode 2).
-    """
-    u, v, w, p, q, r = nu[0], nu[1], nu[2], nu[3], nu[4], nu[5]
-    f0 = f1 = f2 = f3 = f4 = f5 = 0.0
-    for k in range(k0, k1):
-        x_s, y_s, z_s = pos[k, 0], pos[k, 1], pos[k, 2]
-        if inflow == 0:
-            u_a = (1.0 - wake) * (u + q * z_s - r * y_s)
-            vx = u_a
-            if u_a >= 0.0:
-                if thrust_mode == 1:
-                    t_k = thrust
-                elif thrust_mode == 2:
-                    t_k = thrust * 0.5 * rho[k] * u_a * u_a * math.pi * prop_d * prop_d / 4.0
-                else:
-                    t_k = 0.0
-                if t_k > 0.0:
-                    vx = _slipstream_speed(u_a, t_k, prop_d, prop_x, rho[k], span[k])
-            vy = gamma_v * v + gamma_r * x_s * r - p * z_s
-            vz = w + p * y_s - q * x_s
-        else:
-            vx = (1.0 - wake) * (u + q * z_s - r * y_s)
-            vy = v + r * x_s - p * z_s
-            vz = w + p * y_s - q * x_s
-        # LiftingSurface._alpha_speed
-        ax, ay, az = axis[k, 0], axis[k, 1], axis[k, 2]
-        vs = vx * ax + vy * ay + vz * az
-        px, py, pz = vx - vs * ax, vy - vs * ay, vz - vs * az
-        speed = math.sqrt(px * px + py * py + pz * pz)
-        if speed < 1e-9:
-            continue  # components(): zero force (0.0 added)
-        theta = math.atan2(
-            px * lead[k, 0] + py * lead[k, 1] + pz * lead[k, 2],
-            px * chord[k, 0] + py * chord[k, 1] + pz * chord[k, 2],
-        )
-        alpha = (d - theta + math.pi) % (2.0 * math.pi) - math.pi
-        cl, cd = _coefficients(
-            alpha, lift_slope[k], stall[k], transition[k], cd0[k], k_induced[k], cn[k]
-        )
-        dx, dy, dz = px / speed, py / speed, pz / speed
-        qa = 0.5 * rho[k] * speed * speed * area[k]
-        lift, drag = qa * cl, qa * cd
-        fx = lift * (ay * dz - az * dy) - drag * dx
-        fy = lift * (az * dx - ax * dz) - drag * dy
-        fz = lift * (ax * dy - ay * dx) - drag * dz
-        f0 += fx
-        f1 += fy
-        f2 += fz
-        f3 += y_s * fz - z_s * fy
-        f4 += z_s * fx - x_s * fz
-        f5 += x_s * fy - y_s * fx
-    out[0] = f0
-    out[1] = f1
-    out[2] = f2
-    out[3] = f3
-    out[4] = f4
-    out[5] = f5
-
-
 @nb.njit(cache=True, nogil=True)
 def _surfaces_rows(
     nu, delta, inflow, wake, gamma_v, gamma_r, prop_d, prop_x, thrust_mode, thrust,

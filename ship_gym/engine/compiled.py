@@ -49,19 +49,20 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.control.actuators import actuator_target, servo_angle
-from ship_gym.conventions import SURGE
 from ship_gym.engine.batch_control import (
     BatchActuatedSurfaces,
     BatchHullManoeuvring,
     BatchPropeller,
     BatchResistance,
-    manoeuvring_force,
-    propeller_force,
-    surface_group_force,
 )
-from ship_gym.forces.diffraction import transfer_element
+from ship_gym.engine.rigid_body import healthy_state, rigid_body_terms
+from ship_gym.forces.diffraction import diffraction_force, refresh_diffraction_cache
 from ship_gym.forces.fastmath import sincos_turns
 from ship_gym.forces.froude_krylov import _fk_core, _fk_core_f32
+from ship_gym.forces.lifting_surface import surface_group_force
+from ship_gym.forces.manoeuvring import manoeuvring_force
+from ship_gym.forces.propeller import propeller_force
+from ship_gym.forces.radiation import state_space_radiation
 from ship_gym.forces.resistance import holtrop_total
 
 if TYPE_CHECKING:
@@ -273,57 +274,6 @@ def _csr(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
 # kernels
 # ============================================================================================
 @nb.njit(cache=True, nogil=True)
-def _rigid_terms(q, v, mass, weight, cog, held_angle, rot, total, qdot):  # pragma: no cover
-    """R(φ, θ, ψ), gravity − Coriolis (body axes, about O) and η̇ = J(η) ν of one ship.
-
-    The arithmetic of ``ship_gym.engine.batch._ship_terms`` (one row); η̇ of a held angle
-    is 0, and η̇'s angular rows are NaN where |cos θ| < 1e-9 (reported as a divergence).
-    """
-    cphi, sphi = math.cos(q[3]), math.sin(q[3])
-    cth, sth = math.cos(q[4]), math.sin(q[4])
-    cpsi, spsi = math.cos(q[5]), math.sin(q[5])
-    rot[0, 0] = cpsi * cth
-    rot[0, 1] = -spsi * cphi + cpsi * sth * sphi
-    rot[0, 2] = spsi * sphi + cpsi * cphi * sth
-    rot[1, 0] = spsi * cth
-    rot[1, 1] = cpsi * cphi + sphi * sth * spsi
-    rot[1, 2] = -cpsi * sphi + sth * spsi * cphi
-    rot[2, 0] = -sth
-    rot[2, 1] = cth * sphi
-    rot[2, 2] = cth * cphi
-    fx, fy, fz = rot[2, 0] * weight, rot[2, 1] * weight, rot[2, 2] * weight
-    h0 = h1 = h2 = h3 = h4 = h5 = 0.0
-    for j in range(6):
-        h0 += mass[0, j] * v[j]
-        h1 += mass[1, j] * v[j]
-        h2 += mass[2, j] * v[j]
-        h3 += mass[3, j] * v[j]
-        h4 += mass[4, j] * v[j]
-        h5 += mass[5, j] * v[j]
-    u, vv, w, p, qq, rr = v[0], v[1], v[2], v[3], v[4], v[5]
-    total[0] = fx - (qq * h2 - rr * h1)
-    total[1] = fy - (rr * h0 - p * h2)
-    total[2] = fz - (p * h1 - qq * h0)
-    total[3] = (cog[1] * fz - cog[2] * fy) - ((vv * h2 - w * h1) + (qq * h5 - rr * h4))
-    total[4] = (cog[2] * fx - cog[0] * fz) - ((w * h0 - u * h2) + (rr * h3 - p * h5))
-    total[5] = (cog[0] * fy - cog[1] * fx) - ((u * h1 - vv * h0) + (p * h4 - qq * h3))
-    for i in range(3):
-        qdot[i] = rot[i, 0] * u + rot[i, 1] * vv + rot[i, 2] * w
-    if abs(cth) < 1e-9:
-        qdot[3] = np.nan
-        qdot[4] = np.nan
-        qdot[5] = np.nan
-    else:
-        tth = math.tan(q[4])
-        qdot[3] = p + sphi * tth * qq + cphi * tth * rr
-        qdot[4] = cphi * qq - sphi * rr
-        qdot[5] = sphi / cth * qq + cphi / cth * rr
-    for i in range(3):
-        if held_angle[i]:
-            qdot[3 + i] = 0.0
-
-
-@nb.njit(cache=True, nogil=True)
 def _local_phasors(t, x, y, amplitude, omega_t, phase_t, ramp_time, kxt, kyt, mod, offset, local):
     """The components at the ship's O: c'ⱼ = cⱼ(t) e^{−i kⱼ (x cos χⱼ + y sin χⱼ)} with
     cⱼ(t) = r(t) aⱼ e^{i(ωⱼt + εⱼ)} and Matusiak's ramp r (``batch._wave_phasors``), as
@@ -351,104 +301,10 @@ def _local_phasors(t, x, y, amplitude, omega_t, phase_t, ramp_time, kxt, kyt, mo
 
 
 @nb.njit(cache=True, nogil=True)
-def _radiation(
-    v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
-    total, zdot,
-):  # fmt: skip  # pragma: no cover - compiled
-    """Radiation memory: ż = A z + B ν_p into zdot, −(C z + D ν_p) added to total; A, B, C in
-    CSR form (A block-diagonal, B one non-zero per state: O(n_states))."""
-    vp = np.empty(6)
-    for i in range(6):
-        vp[i] = v[i]
-    vp[SURGE] -= speed
-    for i in range(a_ptr.shape[0] - 1):
-        s = 0.0
-        for p in range(a_ptr[i], a_ptr[i + 1]):
-            s += a_val[p] * z[a_idx[p]]
-        for p in range(b_ptr[i], b_ptr[i + 1]):
-            s += b_val[p] * vp[b_idx[p]]
-        zdot[i] = s
-    for o in range(6):
-        s = 0.0
-        for p in range(c_ptr[o], c_ptr[o + 1]):
-            s += c_val[p] * z[c_idx[p]]
-        f = -s
-        if has_d:
-            for j in range(6):
-                f -= vp[j] * d_mat[o, j]
-        total[o] += f
-
-
-@nb.njit(cache=True, nogil=True)
-def _transfer_at(heading, speed, diff, out):  # pragma: no cover - compiled
-    """out[j] = X_D(ω'ⱼ, βⱼ) at ship heading ψ = ``heading`` [rad] for every component; returns
-    the number of components above the table's ω_max.
-
-    As :meth:`Diffraction.heading_expansion`: β = (χⱼ − ψ) mod 2π and, at encounter
-    frequency, ω' = ωⱼ − kⱼ U cos β, then the model's own element look-up
-    (:func:`ship_gym.forces.diffraction.transfer_element`).
-    """
-    table, beta_ext, omega_db, direction, omega_c, wavenumber, encounter = diff[:7]
-    n_above = 0
-    for j in range(direction.shape[0]):
-        b = np.mod(direction[j] - heading, _TWO_PI)
-        w = omega_c[j] - wavenumber[j] * speed * math.cos(b) if encounter else omega_c[j]
-        n_above += transfer_element(w, b, table, beta_ext, omega_db, out, j)
-    return n_above
-
-
-@nb.njit(cache=True, nogil=True)
-def _refresh_diffraction(psi, speed, diff, xd, dxd, diff_ref):  # pragma: no cover - compiled
-    """Cache X_D and ∂X_D/∂ψ (central difference over ±h) at heading ψ, as
-    :meth:`Diffraction.heading_expansion`; returns False, leaving the cache as it was, when the
-    model must raise (``above_range="raise"`` and a component above ω_max)."""
-    h, must_raise, work, count = diff[7:]
-    above = _transfer_at(psi, speed, diff, work[0])
-    if above > 0 and must_raise:
-        return False
-    _transfer_at(psi + h, speed, diff, work[1])
-    _transfer_at(psi - h, speed, diff, work[2])
-    for j in range(xd.shape[0]):
-        for o in range(6):
-            xd[j, o] = work[0, j, o]
-            dxd[j, o] = (work[1, j, o] - work[2, j, o]) / (2.0 * h)
-    diff_ref[0] = psi
-    diff_ref[1] = speed
-    count[0] += 1
-    return True
-
-
-@nb.njit(cache=True, nogil=True)
-def _diffraction(psi, local, xd, dxd, diff_ref, total):  # pragma: no cover - compiled
-    """F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ), X_D cached at heading diff_ref[0]."""
-    dpsi = (psi - diff_ref[0] + math.pi) % _TWO_PI - math.pi
-    for o in range(6):
-        s = 0.0
-        for j in range(local.shape[0]):
-            c = local[j]
-            x = xd[j, o] + dpsi * dxd[j, o]
-            s += c.real * x.real + c.imag * x.imag
-        total[o] += s
-
-
-@nb.njit(cache=True, nogil=True)
 def _viscous_roll(v, b1, b2, total):  # pragma: no cover - compiled
     """Viscous roll damping −(B1 p + B2 |p| p) added to the roll moment."""
     p_roll = v[3]
     total[3] += -(b1 * p_roll + b2 * abs(p_roll) * p_roll)
-
-
-@nb.njit(cache=True, nogil=True)
-def _healthy(q, v, z, v_max):  # pragma: no cover - compiled
-    """q, z finite and max |v| ≤ v_max (False for NaN): the simulators' divergence test."""
-    good = True
-    for i in range(q.shape[0]):
-        good &= np.isfinite(q[i])
-    for i in range(v.shape[0]):
-        good &= abs(v[i]) <= v_max
-    for i in range(z.shape[0]):
-        good &= np.isfinite(z[i])
-    return good
 
 
 @nb.njit(cache=True, nogil=True)
@@ -468,12 +324,12 @@ def _evaluate(
                 diff.wavenumber[s], diff.encounter, diff.step, False, diff.work, diff.count,
             )  # fmt: skip
             ref2 = np.empty(2)
-            _refresh_diffraction(psi, rad.speed, dtab, diff.xd[s], diff.dxd[s], ref2)
+            refresh_diffraction_cache(psi, rad.speed, dtab, diff.xd[s], diff.dxd[s], ref2)
             diff.psi_ref[s] = ref2[0]
             diff.u_ref[s] = ref2[1]
     rot = np.empty((3, 3))
     total = np.empty(6)
-    _rigid_terms(
+    rigid_body_terms(
         q, v, rigid.mass[s], rigid.weight, rigid.cog[s], rigid.held_angle, rot, total, qdot
     )
     crest = _local_phasors(
@@ -497,12 +353,12 @@ def _evaluate(
         total[i] += rot[0, i] * fe[0] + rot[1, i] * fe[1] + rot[2, i] * fe[2]
     for i in range(3):
         total[3 + i] += rot[0, i] * fe[3] + rot[1, i] * fe[4] + rot[2, i] * fe[5]
-    _radiation(
+    state_space_radiation(
         v, z, rad.speed, rad.a_ptr, rad.a_idx, rad.a_val, rad.b_ptr, rad.b_idx, rad.b_val,
         rad.c_ptr, rad.c_idx, rad.c_val, rad.d_mat, rad.has_d, total, zdot,
     )  # fmt: skip
     if diff.enabled:
-        _diffraction(q[5], local, diff.xd[s], diff.dxd[s], diff.psi_ref[s : s + 1], total)
+        diffraction_force(q[5], local, diff.xd[s], diff.dxd[s], diff.psi_ref[s : s + 1], total)
     p_roll = v[3]
     total[3] += -(prop.viscous_b1 * p_roll + prop.viscous_b2 * abs(p_roll) * p_roll)
     # control forces, in the order of the batch models (resistance, propeller, hull, surfaces)
@@ -615,7 +471,7 @@ def _advance_ship(
                 v_new[i] = v[i] + c6 * (a_c[i] + 2.0 * (a2s[i] + a3s[i]) + a4s[i])
             for i in range(nz):
                 z_new[i] = zz[i] + c6 * (g_c[i] + 2.0 * (g2[i] + g3[i]) + g4[i])
-            if not _healthy(q_new, v_new, z_new, v_max):
+            if not healthy_state(q_new, v_new, z_new, v_max):
                 red_max[s] = max(red_max[s], roll_max)
                 return step
             if not use_rk4:  # start-up history (BatchSimulator._push_startup)
@@ -654,7 +510,7 @@ def _advance_ship(
             for i in range(nz):
                 zdd = (3.0 * g_c[i] - 4.0 * zd1[s, i] + zd2[s, i]) * c
                 z_new[i] = zz[i] + dt * g_c[i] + h2 * zdd
-            if not _healthy(q_new, v_new, z_new, v_max):
+            if not healthy_state(q_new, v_new, z_new, v_max):
                 red_max[s] = max(red_max[s], roll_max)
                 return step
             for i in range(6):
@@ -1107,7 +963,7 @@ def _loop_radiation(
     total = np.zeros(6)
     zdot = np.empty(z.shape[0])
     for _ in range(n):
-        _radiation(
+        state_space_radiation(
             v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat,
             has_d, total, zdot,
         )  # fmt: skip
@@ -1118,7 +974,7 @@ def _loop_radiation(
 def _loop_diffraction(n, psi, local, xd, dxd, diff_ref):  # pragma: no cover - compiled
     total = np.zeros(6)
     for _ in range(n):
-        _diffraction(psi, local, xd, dxd, diff_ref, total)
+        diffraction_force(psi, local, xd, dxd, diff_ref, total)
     return total
 
 
@@ -1128,7 +984,7 @@ def _loop_rigid(n, q, v, mass, weight, cog, held_angle, b1, b2):  # pragma: no c
     total = np.empty(6)
     qdot = np.empty(6)
     for _ in range(n):
-        _rigid_terms(q, v, mass, weight, cog, held_angle, rot, total, qdot)
+        rigid_body_terms(q, v, mass, weight, cog, held_angle, rot, total, qdot)
         _viscous_roll(v, b1, b2, total)
     return total
 
@@ -1270,7 +1126,7 @@ class CompiledShip:
         q, v, t = self.eta.copy(), self.nu.copy(), self.t
         rot = np.empty((3, 3))
         mass, weight, cog, held = rigid.mass[0], rigid.weight, rigid.cog[0], rigid.held_angle
-        _rigid_terms(q, v, mass, weight, cog, held, rot, np.empty(6), np.empty(6))
+        rigid_body_terms(q, v, mass, weight, cog, held, rot, np.empty(6), np.empty(6))
         crest = _local_phasors(
             t, q[0], q[1], amp, omega_t, phase_t, ramp, kxt, kyt, mod, offset, local
         )

@@ -15,6 +15,9 @@ is T(φ, θ) ν₂ (Matusiak eq. 5).
 
 from __future__ import annotations
 
+import math
+
+import numba as nb
 import numpy as np
 
 from ship_gym.kinematics import euler_rate_matrix, rotation_matrix, skew
@@ -76,3 +79,70 @@ def kinematics(eta: np.ndarray, nu: np.ndarray) -> np.ndarray:
 
 
 __all__ = ["coriolis_force", "gravity_force", "kinematics", "skew"]
+
+
+# =============================================================================================
+# row kernels (numba; the engine's numpy path and its compiled loop call these)
+# =============================================================================================
+@nb.njit(cache=True, nogil=True)
+def rigid_body_terms(q, v, mass, weight, cog, held_angle, rot, total, qdot):  # pragma: no cover
+    """R(φ, θ, ψ), gravity − Coriolis (body axes, about O) and η̇ = J(η) ν of one ship.
+
+    The arithmetic of ``ship_gym.engine.batch._ship_terms`` (one row); η̇ of a held angle
+    is 0, and η̇'s angular rows are NaN where |cos θ| < 1e-9 (reported as a divergence).
+    """
+    cphi, sphi = math.cos(q[3]), math.sin(q[3])
+    cth, sth = math.cos(q[4]), math.sin(q[4])
+    cpsi, spsi = math.cos(q[5]), math.sin(q[5])
+    rot[0, 0] = cpsi * cth
+    rot[0, 1] = -spsi * cphi + cpsi * sth * sphi
+    rot[0, 2] = spsi * sphi + cpsi * cphi * sth
+    rot[1, 0] = spsi * cth
+    rot[1, 1] = cpsi * cphi + sphi * sth * spsi
+    rot[1, 2] = -cpsi * sphi + sth * spsi * cphi
+    rot[2, 0] = -sth
+    rot[2, 1] = cth * sphi
+    rot[2, 2] = cth * cphi
+    fx, fy, fz = rot[2, 0] * weight, rot[2, 1] * weight, rot[2, 2] * weight
+    h0 = h1 = h2 = h3 = h4 = h5 = 0.0
+    for j in range(6):
+        h0 += mass[0, j] * v[j]
+        h1 += mass[1, j] * v[j]
+        h2 += mass[2, j] * v[j]
+        h3 += mass[3, j] * v[j]
+        h4 += mass[4, j] * v[j]
+        h5 += mass[5, j] * v[j]
+    u, vv, w, p, qq, rr = v[0], v[1], v[2], v[3], v[4], v[5]
+    total[0] = fx - (qq * h2 - rr * h1)
+    total[1] = fy - (rr * h0 - p * h2)
+    total[2] = fz - (p * h1 - qq * h0)
+    total[3] = (cog[1] * fz - cog[2] * fy) - ((vv * h2 - w * h1) + (qq * h5 - rr * h4))
+    total[4] = (cog[2] * fx - cog[0] * fz) - ((w * h0 - u * h2) + (rr * h3 - p * h5))
+    total[5] = (cog[0] * fy - cog[1] * fx) - ((u * h1 - vv * h0) + (p * h4 - qq * h3))
+    for i in range(3):
+        qdot[i] = rot[i, 0] * u + rot[i, 1] * vv + rot[i, 2] * w
+    if abs(cth) < 1e-9:
+        qdot[3] = np.nan
+        qdot[4] = np.nan
+        qdot[5] = np.nan
+    else:
+        tth = math.tan(q[4])
+        qdot[3] = p + sphi * tth * qq + cphi * tth * rr
+        qdot[4] = cphi * qq - sphi * rr
+        qdot[5] = sphi / cth * qq + cphi / cth * rr
+    for i in range(3):
+        if held_angle[i]:
+            qdot[3 + i] = 0.0
+
+
+@nb.njit(cache=True, nogil=True)
+def healthy_state(q, v, z, v_max):  # pragma: no cover - compiled
+    """q, z finite and max |v| ≤ v_max (False for NaN): the simulators' divergence test."""
+    good = True
+    for i in range(q.shape[0]):
+        good &= np.isfinite(q[i])
+    for i in range(v.shape[0]):
+        good &= abs(v[i]) <= v_max
+    for i in range(z.shape[0]):
+        good &= np.isfinite(z[i])
+    return good

@@ -426,3 +426,58 @@ class Diffraction(ForceModel):
         dpsi = (psi - self._psi_ref + math.pi) % _TWO_PI - math.pi
         force = (folded.conj() @ (self._xd + dpsi * self._dxd)).real
         return force, empty
+
+
+# =============================================================================================
+# row kernels (numba; the engine's numpy path and its compiled loop call these)
+# =============================================================================================
+@nb.njit(cache=True, nogil=True)
+def transfer_at_heading(heading, speed, diff, out):  # pragma: no cover - compiled
+    """out[j] = X_D(ω'ⱼ, βⱼ) at ship heading ψ = ``heading`` [rad] for every component; returns
+    the number of components above the table's ω_max.
+
+    As :meth:`Diffraction.heading_expansion`: β = (χⱼ − ψ) mod 2π and, at encounter
+    frequency, ω' = ωⱼ − kⱼ U cos β, then the model's own element look-up
+    (:func:`ship_gym.forces.diffraction.transfer_element`).
+    """
+    table, beta_ext, omega_db, direction, omega_c, wavenumber, encounter = diff[:7]
+    n_above = 0
+    for j in range(direction.shape[0]):
+        b = np.mod(direction[j] - heading, _TWO_PI)
+        w = omega_c[j] - wavenumber[j] * speed * math.cos(b) if encounter else omega_c[j]
+        n_above += transfer_element(w, b, table, beta_ext, omega_db, out, j)
+    return n_above
+
+
+@nb.njit(cache=True, nogil=True)
+def refresh_diffraction_cache(psi, speed, diff, xd, dxd, diff_ref):  # pragma: no cover - compiled
+    """Cache X_D and ∂X_D/∂ψ (central difference over ±h) at heading ψ, as
+    :meth:`Diffraction.heading_expansion`; returns False, leaving the cache as it was, when the
+    model must raise (``above_range="raise"`` and a component above ω_max)."""
+    h, must_raise, work, count = diff[7:]
+    above = transfer_at_heading(psi, speed, diff, work[0])
+    if above > 0 and must_raise:
+        return False
+    transfer_at_heading(psi + h, speed, diff, work[1])
+    transfer_at_heading(psi - h, speed, diff, work[2])
+    for j in range(xd.shape[0]):
+        for o in range(6):
+            xd[j, o] = work[0, j, o]
+            dxd[j, o] = (work[1, j, o] - work[2, j, o]) / (2.0 * h)
+    diff_ref[0] = psi
+    diff_ref[1] = speed
+    count[0] += 1
+    return True
+
+
+@nb.njit(cache=True, nogil=True)
+def diffraction_force(psi, local, xd, dxd, diff_ref, total):  # pragma: no cover - compiled
+    """F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ), X_D cached at heading diff_ref[0]."""
+    dpsi = (psi - diff_ref[0] + math.pi) % _TWO_PI - math.pi
+    for o in range(6):
+        s = 0.0
+        for j in range(local.shape[0]):
+            c = local[j]
+            x = xd[j, o] + dpsi * dxd[j, o]
+            s += c.real * x.real + c.imag * x.imag
+        total[o] += s

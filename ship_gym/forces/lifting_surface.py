@@ -106,6 +106,7 @@ import math
 from dataclasses import dataclass
 from typing import Literal
 
+import numba as nb
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -343,7 +344,7 @@ class LiftingSurface:
         return self.lift_slope * self.stall_angle
 
     # ------------------------------------------------------------------ coefficients
-    def _coefficients(self, alpha: float) -> tuple[float, float]:
+    def lift_drag_coefficients(self, alpha: float) -> tuple[float, float]:
         """(C_L, C_D) at one angle of attack [rad] (scalar fast path of eq. 3–6)."""
         a = alpha - math.pi * round(alpha / math.pi)  # π-periodic, in [−π/2, π/2]
         s = 1.0 if a >= 0.0 else -1.0
@@ -385,8 +386,8 @@ class LiftingSurface:
         if not np.all(np.isfinite(arr)):
             raise ValueError(f"alpha={alpha!r}; expected finite angles [rad]")
         if arr.ndim == 0:
-            return self._coefficients(float(arr))
-        flat = [self._coefficients(float(a)) for a in arr.ravel()]
+            return self.lift_drag_coefficients(float(arr))
+        flat = [self.lift_drag_coefficients(float(a)) for a in arr.ravel()]
         cl = np.array([f[0] for f in flat]).reshape(arr.shape)
         cd = np.array([f[1] for f in flat]).reshape(arr.shape)
         return cl, cd
@@ -502,7 +503,7 @@ class LiftingSurface:
             (α [rad], |V⊥| [m/s], C_L, C_D, lift [N], drag [N], (Fx, Fy, Fz, K, M, N) [N, N·m]).
         """
         alpha, speed, (px, py, pz) = self._alpha_speed(vx, vy, vz, deflection)
-        cl, cd = self._coefficients(alpha)
+        cl, cd = self.lift_drag_coefficients(alpha)
         if speed < _MIN_SPEED:
             return alpha, 0.0, cl, cd, 0.0, 0.0, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         dx, dy, dz = px / speed, py / speed, pz / speed
@@ -566,3 +567,115 @@ class SurfaceGroup(ForceModel):
             f = s.components(vx, vy, vz, delta)[6]
             total = [a + b for a, b in zip(total, f, strict=True)]
         return np.array(total), np.zeros(0)
+
+
+# =============================================================================================
+# row kernels (numba; the engine's numpy path and its compiled loop call these)
+# =============================================================================================
+@nb.njit(cache=True)
+def lift_drag_coefficients(
+    alpha, lift_slope, a_s, transition, cd0, k_induced, cn
+):  # pragma: no cover
+    """LiftingSurface._coefficients: (C_L, C_D), eq. (3)–(6) of the lifting-surface module."""
+    a = alpha - math.pi * round(alpha / math.pi)
+    s = 1.0 if a >= 0.0 else -1.0
+    a = abs(a)
+    if a <= a_s:
+        cl = lift_slope * a
+        return s * cl, cd0 + k_induced * cl * cl
+    sin_a = math.sin(a)
+    cl_plate = cn * sin_a * math.cos(a)
+    cd_plate = cd0 + cn * sin_a * sin_a
+    if a >= a_s + transition:
+        return s * cl_plate, cd_plate
+    sigma = 0.5 * (1.0 - math.cos(math.pi * (a - a_s) / transition))
+    cl_max = lift_slope * a_s
+    cd_max = cd0 + k_induced * cl_max * cl_max
+    cl = (1.0 - sigma) * cl_max + sigma * cl_plate
+    cd = (1.0 - sigma) * cd_max + sigma * cd_plate
+    return s * cl, cd
+
+
+@nb.njit(cache=True)
+def slipstream_speed(u_a, thrust, diameter, distance, rho, span):  # pragma: no cover
+    """u_R of eq. (4) of the rudder module: rudder._slipstream (eq. 3) and the span fraction."""
+    r0 = 0.5 * diameter
+    u_inf = math.sqrt(u_a * u_a + 8.0 * thrust / (rho * math.pi * diameter * diameter))
+    v_x = u_a + (u_inf - u_a) * 0.5 * (1.0 + distance / math.sqrt(distance**2 + r0 * r0))
+    if v_x <= 0.0:
+        v_x, r_x = 0.0, r0
+    else:
+        r_x = r0 * math.sqrt(0.5 * (u_a + u_inf) / v_x)
+    fraction = min(1.0, 2.0 * r_x / span)
+    return math.sqrt(fraction * v_x * v_x + (1.0 - fraction) * u_a * u_a)
+
+
+@nb.njit(cache=True, nogil=True)
+def surface_group_force(
+    nu, d, inflow, wake, gamma_v, gamma_r, prop_d, prop_x, thrust_mode, thrust,
+    pos, axis, chord, lead, area, span, rho, lift_slope, stall, transition, cd0, k_induced,
+    cn, k0, k1, out,
+):  # fmt: skip  # pragma: no cover - compiled
+    """SurfaceGroup.evaluate for one ship: Σ over surfaces k0 ≤ k < k1 of
+    LiftingSurface.components at the applied angle ``d`` [rad]; writes out (6,).
+
+    Inflow: ``_INFLOW_RUDDER`` — Rudder._inflow (eq. 1–4 of the rudder module: wake, actuator-
+    disk slipstream of the thrust, flow straightening); ``_INFLOW_RIGID`` — the rigid-body
+    velocity v + ω × r with the axial part scaled by 1 − w (fins, foil, flaps). ``thrust``:
+    the propeller thrust [N] (mode 1) or C_Th (mode 2).
+    """
+    u, v, w, p, q, r = nu[0], nu[1], nu[2], nu[3], nu[4], nu[5]
+    f0 = f1 = f2 = f3 = f4 = f5 = 0.0
+    for k in range(k0, k1):
+        x_s, y_s, z_s = pos[k, 0], pos[k, 1], pos[k, 2]
+        if inflow == 0:
+            u_a = (1.0 - wake) * (u + q * z_s - r * y_s)
+            vx = u_a
+            if u_a >= 0.0:
+                if thrust_mode == 1:
+                    t_k = thrust
+                elif thrust_mode == 2:
+                    t_k = thrust * 0.5 * rho[k] * u_a * u_a * math.pi * prop_d * prop_d / 4.0
+                else:
+                    t_k = 0.0
+                if t_k > 0.0:
+                    vx = slipstream_speed(u_a, t_k, prop_d, prop_x, rho[k], span[k])
+            vy = gamma_v * v + gamma_r * x_s * r - p * z_s
+            vz = w + p * y_s - q * x_s
+        else:
+            vx = (1.0 - wake) * (u + q * z_s - r * y_s)
+            vy = v + r * x_s - p * z_s
+            vz = w + p * y_s - q * x_s
+        # LiftingSurface._alpha_speed
+        ax, ay, az = axis[k, 0], axis[k, 1], axis[k, 2]
+        vs = vx * ax + vy * ay + vz * az
+        px, py, pz = vx - vs * ax, vy - vs * ay, vz - vs * az
+        speed = math.sqrt(px * px + py * py + pz * pz)
+        if speed < 1e-9:
+            continue  # components(): zero force (0.0 added)
+        theta = math.atan2(
+            px * lead[k, 0] + py * lead[k, 1] + pz * lead[k, 2],
+            px * chord[k, 0] + py * chord[k, 1] + pz * chord[k, 2],
+        )
+        alpha = (d - theta + math.pi) % (2.0 * math.pi) - math.pi
+        cl, cd = lift_drag_coefficients(
+            alpha, lift_slope[k], stall[k], transition[k], cd0[k], k_induced[k], cn[k]
+        )
+        dx, dy, dz = px / speed, py / speed, pz / speed
+        qa = 0.5 * rho[k] * speed * speed * area[k]
+        lift, drag = qa * cl, qa * cd
+        fx = lift * (ay * dz - az * dy) - drag * dx
+        fy = lift * (az * dx - ax * dz) - drag * dy
+        fz = lift * (ax * dy - ay * dx) - drag * dz
+        f0 += fx
+        f1 += fy
+        f2 += fz
+        f3 += y_s * fz - z_s * fy
+        f4 += z_s * fx - x_s * fz
+        f5 += x_s * fy - y_s * fx
+    out[0] = f0
+    out[1] = f1
+    out[2] = f2
+    out[3] = f3
+    out[4] = f4
+    out[5] = f5

@@ -99,6 +99,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+import numba as nb
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -409,6 +410,8 @@ class HullManoeuvring(ForceModel):
         self._c_nr = h * length**4 * d.N_r
         self._cda = h * self.strips.drag_coefficient * self.strips.lateral_area
         self._x = self.strips.x
+        self._cda_c = np.ascontiguousarray(self._cda, dtype=float)
+        self._x_c = np.ascontiguousarray(self._x, dtype=float)
 
     @classmethod
     def from_hull(
@@ -473,12 +476,18 @@ class HullManoeuvring(ForceModel):
         nu = np.asarray(ctx.nu, dtype=float)
         if nu.shape != (6,) or not np.all(np.isfinite(nu)):
             raise ValueError(f"ctx.nu={ctx.nu!r}; expected a finite (6,) velocity vector")
-        y, n = self.linear_force(nu)
-        if self.crossflow:
-            yc, nc = self.crossflow_force(nu)
-            y += yc
-            n += nc
-        return np.array([0.0, y, 0.0, -self.roll_lever * y, 0.0, n]), np.zeros(0)
+        force = np.empty(6)
+        manoeuvring_force(nu, *self.kernel_parameters(), force)
+        return force, np.zeros(0)
+
+    def kernel_parameters(self) -> tuple:
+        """The arguments of :func:`manoeuvring_force` after ν: the dimensional Clarke factors
+        (Y_v, Y_r, N_v, N_r scaled by ½ρ and L) [N·s/m, N·s, N·s, N·m·s], the strips' ½ρ C_D
+        dA [kg/m] and x [m], the cross-flow switch and z_H [m]."""
+        return (
+            self._c_yv, self._c_yr, self._c_nv, self._c_nr, self._cda_c, self._x_c,
+            bool(self.crossflow), float(self.roll_lever),
+        )  # fmt: skip
 
     def __repr__(self) -> str:
         d = self.derivatives
@@ -488,3 +497,31 @@ class HullManoeuvring(ForceModel):
             f"N'v={d.N_v:.5f}, N'r={d.N_r:.5f}; z_H={self.roll_lever:.3g} m, "
             f"{len(self.strips.x)} strips)"
         )
+
+
+# =============================================================================================
+# row kernels (numba; the engine's numpy path and its compiled loop call these)
+# =============================================================================================
+@nb.njit(cache=True, nogil=True)
+def manoeuvring_force(nu, c_yv, c_yr, c_nv, c_nr, cda, x, crossflow, roll_lever, out):
+    """HullManoeuvring.evaluate for one ship: eq. (1) + eq. (3), K = −z_H Y; writes out (6,)."""
+    u, v, r = nu[0], nu[1], nu[5]
+    au = abs(u)
+    y = c_yv * au * v + c_yr * u * r
+    n = c_nv * u * v + c_nr * au * r
+    if crossflow:
+        yc = 0.0
+        nc = 0.0
+        for k in range(x.shape[0]):
+            vl = v + x[k] * r
+            f = cda[k] * abs(vl) * vl
+            yc += f
+            nc += f * x[k]
+        y += -yc
+        n += -nc
+    out[0] = 0.0
+    out[1] = y
+    out[2] = 0.0
+    out[3] = -roll_lever * y
+    out[4] = 0.0
+    out[5] = n

@@ -105,11 +105,12 @@ import math
 from dataclasses import dataclass
 from typing import Any, Literal
 
+import numba as nb
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq, minimize_scalar
 
-from ship_gym.conventions import PITCH, RHO_SEAWATER, ROLL, SURGE, YAW
+from ship_gym.conventions import RHO_SEAWATER, SURGE
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.forces.resistance import CalmWaterResistance, HoltropMennen, ResistanceParticulars
 from ship_gym.hull.hull import Hull
@@ -345,13 +346,6 @@ class WageningenB:
         jj = float(j) if np.ndim(j) == 0 else np.asarray(j, dtype=float)
         return jj * self.kt(jj) / (2.0 * math.pi * self.kq(jj))
 
-    def _slopes(self, j: float) -> tuple[float, float]:
-        a, b = self.kt_coefficients, self.kq_coefficients
-        return (
-            a[1] + j * (2.0 * a[2] + 3.0 * j * a[3]),
-            b[1] + j * (2.0 * b[2] + 3.0 * j * b[3]),
-        )
-
     def coefficients_extended(self, j: float) -> tuple[float, float]:
         """(K_T, K_Q) for any real J: the polynomial on [0, J₀], linear continuations outside.
 
@@ -360,14 +354,21 @@ class WageningenB:
         j : float
             Advance ratio [-].
         """
-        j0 = self.j_zero_thrust
-        if j < 0.0:
-            dkt, dkq = self.kt_coefficients[1], self.kq_coefficients[1]
-            return self.kt_coefficients[0] + dkt * j, self.kq_coefficients[0] + dkq * j
-        if j > j0:
-            dkt, dkq = self._slopes(j0)
-            return dkt * (j - j0), _horner(self.kq_coefficients, j0) + dkq * (j - j0)
-        return _horner(self.kt_coefficients, j), _horner(self.kq_coefficients, j)
+        kt, kq = open_water_kt_kq(float(j), *self._kernel_coefficients)
+        return float(kt), float(kq)
+
+    @property
+    def _kernel_coefficients(self) -> tuple[np.ndarray, np.ndarray, float]:
+        """(K_T coefficients, K_Q coefficients, J₀): the arguments of :func:`open_water_kt_kq`."""
+        cached = self.__dict__.get("_kernel_cache")
+        if cached is None:
+            cached = (
+                np.array(self.kt_coefficients, dtype=float),
+                np.array(self.kq_coefficients, dtype=float),
+                float(self.j_zero_thrust),
+            )
+            self.__dict__["_kernel_cache"] = cached
+        return cached
 
     def advance_ratio_for_load(self, kt_over_j2: float) -> float:
         """J ∈ (0, J₀) with K_T(J) = c J², c = T/(ρ D² V_A²) > 0 [-] (the loading line)."""
@@ -682,7 +683,7 @@ class Propeller(ForceModel):
             raise ValueError(f"name must be a non-empty string; got {name!r}")
         self.name = name
         self._rho_d4 = self.rho * self.diameter**4
-        self.last_operating_point: PropellerOperatingPoint | None = None
+        self._last_inputs: tuple[float, float] | None = None
         """Operating point of the latest :meth:`evaluate` call (diagnostics)."""
 
     def __repr__(self) -> str:
@@ -759,17 +760,32 @@ class Propeller(ForceModel):
 
         The operating point (J, T, Q_B, P_D …) is kept in :attr:`last_operating_point`.
         """
-        op = self.operating_point(float(ctx.nu[SURGE]), self._command(ctx))
-        self.last_operating_point = op
-        ctx.shared["propeller_thrust"] = op.thrust  # for the rudder's slipstream (evaluated later)
-        x = op.surge_force
-        force = np.zeros(6)
-        force[SURGE] = x
-        force[PITCH] = self.position[2] * x
-        force[YAW] = -self.position[1] * x
-        if self.roll_reaction:
-            force[ROLL] = -op.torque if self.handedness == "right" else op.torque
+        u, n = float(ctx.nu[SURGE]), self._command(ctx)
+        force = np.empty(6)
+        thrust = propeller_force(u, n, *self.kernel_parameters(), force)
+        self._last_inputs = (u, n)
+        ctx.shared["propeller_thrust"] = thrust  # for the rudder's slipstream (evaluated later)
         return force, np.zeros(0)
+
+    @property
+    def last_operating_point(self) -> PropellerOperatingPoint | None:
+        """The operating point (J, T, Q_B, P_D …) of the last :meth:`evaluate` (None before)."""
+        if self._last_inputs is None:
+            return None
+        return self.operating_point(*self._last_inputs)
+
+    def kernel_parameters(self) -> tuple:
+        """The arguments of :func:`propeller_force` after (u, n): open-water coefficients and
+        J₀, D [m], ρD⁴ [kg·m], 1 − w, 1 − t, η_R, the astern factor, z_P, y_P [m] and the sign
+        of the roll reaction (0 without it)."""
+        kt, kq, j0 = self.open_water._kernel_coefficients
+        roll = 0.0 if not self.roll_reaction else (-1.0 if self.handedness == "right" else 1.0)
+        return (
+            kt, kq, j0, float(self.diameter), float(self._rho_d4), 1.0 - self.wake_fraction,
+            1.0 - self.thrust_deduction, float(self.relative_rotative_efficiency),
+            float(self.astern_thrust_factor), float(self.position[2]), float(self.position[1]),
+            roll,
+        )  # fmt: skip
 
     # -- self-propulsion --------------------------------------------------------------------------
     def _resistance_model(self, resistance: CalmWaterResistance | None) -> CalmWaterResistance:
@@ -1096,3 +1112,51 @@ __all__ = [
     "keller_blade_area_ratio",
     "service_speed",
 ]
+
+
+# =============================================================================================
+# row kernels (numba; the engine's numpy path and its compiled loop call these)
+# =============================================================================================
+@nb.njit(cache=True)
+def open_water_kt_kq(j, kt_c, kq_c, j0):  # pragma: no cover - compiled
+    """WageningenB.coefficients_extended (polynomial on [0, J₀], linear outside)."""
+    if j < 0.0:
+        return kt_c[0] + kt_c[1] * j, kq_c[0] + kq_c[1] * j
+    if j > j0:
+        dkt = kt_c[1] + j0 * (2.0 * kt_c[2] + 3.0 * j0 * kt_c[3])
+        dkq = kq_c[1] + j0 * (2.0 * kq_c[2] + 3.0 * j0 * kq_c[3])
+        kq0 = kq_c[0] + j0 * (kq_c[1] + j0 * (kq_c[2] + j0 * kq_c[3]))
+        return dkt * (j - j0), kq0 + dkq * (j - j0)
+    kt = kt_c[0] + j * (kt_c[1] + j * (kt_c[2] + j * kt_c[3]))
+    kq = kq_c[0] + j * (kq_c[1] + j * (kq_c[2] + j * kq_c[3]))
+    return kt, kq
+
+
+@nb.njit(cache=True, nogil=True)
+def propeller_force(
+    u, n, kt_c, kq_c, j0, diameter, rho_d4, one_minus_w, one_minus_t, eta_r, astern, z_p, y_p,
+    roll_sign, out,
+):  # fmt: skip  # pragma: no cover - compiled
+    """Propeller.evaluate for one ship: X = (1 − t) T(n, (1 − w) u) at r_P, roll reaction
+    optional; writes out (6,) and returns the open-water thrust T [N]."""
+    va = one_minus_w * u
+    if abs(n) < 1e-12:
+        thrust, torque = 0.0, 0.0
+    else:
+        sign = 1.0
+        if n < 0.0:  # mirror image of the ahead curves (Propeller.thrust_torque)
+            n, va, sign = -n, -va, -1.0
+        kt, kq = open_water_kt_kq(va / (n * diameter), kt_c, kq_c, j0)
+        thrust = rho_d4 * n * n * kt
+        torque = rho_d4 * diameter * n * n * kq
+        if sign < 0.0:
+            thrust = -astern * thrust
+            torque = -torque
+    x = one_minus_t * thrust
+    out[0] = x
+    out[1] = 0.0
+    out[2] = 0.0
+    out[3] = roll_sign * (torque / eta_r)
+    out[4] = z_p * x
+    out[5] = -y_p * x
+    return thrust

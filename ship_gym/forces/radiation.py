@@ -52,6 +52,7 @@ import warnings
 from collections.abc import Mapping
 from typing import Any, Literal
 
+import numba as nb
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
@@ -811,3 +812,35 @@ class ConstantCoefficientRadiation(ForceModel):
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Force −B_c ν_p [N, N·m] (body axes, about O) and no state derivatives."""
         return -(self.damping @ perturbation_velocity(ctx)), self._empty
+
+
+# =============================================================================================
+# row kernels (numba; the engine's numpy path and its compiled loop call these)
+# =============================================================================================
+@nb.njit(cache=True, nogil=True)
+def state_space_radiation(
+    v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
+    total, zdot,
+):  # fmt: skip  # pragma: no cover - compiled
+    """Radiation memory: ż = A z + B ν_p into zdot, −(C z + D ν_p) added to total; A, B, C in
+    CSR form (A block-diagonal, B one non-zero per state: O(n_states))."""
+    vp = np.empty(6)
+    for i in range(6):
+        vp[i] = v[i]
+    vp[SURGE] -= speed
+    for i in range(a_ptr.shape[0] - 1):
+        s = 0.0
+        for p in range(a_ptr[i], a_ptr[i + 1]):
+            s += a_val[p] * z[a_idx[p]]
+        for p in range(b_ptr[i], b_ptr[i + 1]):
+            s += b_val[p] * vp[b_idx[p]]
+        zdot[i] = s
+    for o in range(6):
+        s = 0.0
+        for p in range(c_ptr[o], c_ptr[o + 1]):
+            s += c_val[p] * z[c_idx[p]]
+        f = -s
+        if has_d:
+            for j in range(6):
+                f -= vp[j] * d_mat[o, j]
+        total[o] += f

@@ -170,7 +170,7 @@ def test_compiled_diffraction_refresh_equals_the_models_look_up(speed):
     # Diffraction.heading_expansion, at headings all around the circle and at forward speed
     # (encounter frequencies, some beyond the table: zero, some negative: conjugated)
     from ship_gym.engine.batch import BatchDiffraction
-    from ship_gym.engine.compiled import _refresh_diffraction
+    from ship_gym.engine.compiled import refresh_diffraction_cache
 
     ship = build_compiled_ship(ShipSetup(integrator="holloway", speed=speed), _field())
     model = next(f for f in ship.sim.forces if isinstance(f, BatchDiffraction)).template
@@ -188,7 +188,7 @@ def test_compiled_diffraction_refresh_equals_the_models_look_up(speed):
         xd = np.zeros((n_c, 6), dtype=complex)
         dxd = np.zeros((n_c, 6), dtype=complex)
         ref = np.array([np.nan, np.nan])
-        assert _refresh_diffraction(psi, speed, tables, xd, dxd, ref)
+        assert refresh_diffraction_cache(psi, speed, tables, xd, dxd, ref)
         x, dx, _, _ = model.heading_expansion(w.direction, w.omega, w.wavenumber, psi, speed)
         # the same arithmetic; np.cos (numpy's SIMD loop) and math.cos may differ by an ulp
         np.testing.assert_allclose(xd, x, rtol=1e-13, atol=1e-13 * np.abs(x).max())
