@@ -328,6 +328,44 @@ def _long_runs(quick: bool) -> dict:
     return {"duration_s": duration, "runs": runs}
 
 
+def _actuator_overhead(quick: bool) -> dict:
+    """CPU cost of the fast path with the actuators on (Holtrop resistance, B-series propeller,
+    Clarke manoeuvring, rudder under the PID autopilot, roll fins under their controller) over
+    the same force set without them, at the ship's service speed (Fn 0.25), the same sea and
+    state: interleaved blocks of 1000 steps, min and median of the per-step ratio."""
+    speed = 0.25 * float(np.sqrt(9.81 * 175.0))
+    base = dict(integrator="holloway", hull_overrides=dict(MESHES[FAST_MESH]), speed=speed)
+    field = wave_field_for(SEA, HEADING, np.random.default_rng(0))
+    ships = {
+        "without": build_compiled_ship(ShipSetup(**base), field, precision=FAST_PRECISION),
+        "with": build_compiled_ship(
+            ShipSetup(
+                **base, propulsion=True, manoeuvring=True, rudder="autopilot", fins="controller"
+            ),
+            field,
+            precision=FAST_PRECISION,
+        ),
+    }
+    for ship in ships.values():
+        ship.reset(t0=T_FULL_SEA)
+        ship.advance(200)
+    blocks = 3 if quick else 9
+    times: dict[str, list[float]] = {k: [] for k in ships}
+    for _ in range(blocks):
+        for name, ship in ships.items():
+            c0 = time.process_time()
+            ship.advance(1000)
+            times[name].append((time.process_time() - c0) / 1000)
+    ratios = np.array(times["with"]) / np.array(times["without"])
+    return {
+        "step_us_cpu_without": 1e6 * float(np.min(times["without"])),
+        "step_us_cpu_with": 1e6 * float(np.min(times["with"])),
+        "ratio_min": float(ratios.min()),
+        "ratio_median": float(np.median(ratios)),
+        "realtime_factor_with_actuators_cpu": DT / float(np.median(times["with"])),
+    }
+
+
 def _compiled_section(quick: bool, rounds: int) -> dict:
     """Real-time factors of the compiled stepper (both meshes and precisions), of the
     reference path on the same meshes, and the cost split of the fast path's step."""
@@ -572,6 +610,14 @@ def main(argv: list[str] | None = None) -> int:
         f"  headline (median of the long runs): {np.median(long_rtf):.0f}× real time, "
         f"{np.median(long_rtf) / comp['rtf'][ref_key]['cpu']:.0f}× the reference path"
     )
+    actuators = _actuator_overhead(quick)
+    print(
+        f"  with actuators (propulsion, manoeuvring, rudder + autopilot, fins + controller): "
+        f"{actuators['step_us_cpu_with']:.1f} vs {actuators['step_us_cpu_without']:.1f} µs CPU "
+        f"per step, ratio min {actuators['ratio_min']:.3f}, median "
+        f"{actuators['ratio_median']:.3f}; "
+        f"{actuators['realtime_factor_with_actuators_cpu']:.0f}× real time"
+    )
     goal_us = DT / 1000.0 * 1e6
     print(
         f"  goal ≥ 1000× real time = ≤ {goal_us:.0f} µs per step; fast path "
@@ -805,6 +851,7 @@ def main(argv: list[str] | None = None) -> int:
             "realtime_factor_fast": float(np.median(long_rtf)),
             "realtime_factor_fast_block": comp["rtf"][fast_key]["cpu"],
             "long_runs": long,
+            "actuator_overhead": actuators,
             "realtime_factor_reference": comp["rtf"][ref_key]["cpu"],
             "speedup": float(np.median(long_rtf)) / comp["rtf"][ref_key]["cpu"],
             "speedup_block": speed_up["cpu"],
