@@ -75,6 +75,7 @@ from ship_gym.conventions import GRAVITY  # noqa: E402
 from ship_gym.engine.batch import BatchSimulator, build_batch_simulator  # noqa: E402
 from ship_gym.engine.ship import ShipSetup, wave_field_for  # noqa: E402
 from ship_gym.hull import equilibrium, hydrostatics, load_hull, righting_arm  # noqa: E402
+from ship_gym.io_utils import from_json_value, to_json_value  # noqa: E402
 from ship_gym.waves.sea_state import IrregularSea, RegularWave  # noqa: E402
 
 # ------------------------------------------------------------------------------------ settings
@@ -914,28 +915,6 @@ def plot(res: dict, path: Path) -> None:
     plt.close(fig)
 
 
-def _jsonable(x):
-    if isinstance(x, dict):
-        return {k: _jsonable(v) for k, v in x.items()}
-    if isinstance(x, list | tuple):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return _jsonable(x.tolist())
-    if isinstance(x, np.floating | np.integer | np.bool_):
-        return _jsonable(x.item())
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
-
-
-def _from_json(x):
-    if isinstance(x, dict):
-        return {k: _from_json(v) for k, v in x.items()}
-    if isinstance(x, list):
-        return [_from_json(v) for v in x]
-    return math.nan if x is None else x
-
-
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="≈ 1 min smoke run")
@@ -954,7 +933,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.output is None:
         args.output = Path("out/accuracy_quick.png" if args.quick else "docs/accuracy/accuracy.png")
     if args.replot is not None:
-        res = _from_json(json.loads(args.replot.read_text()))
+        res = from_json_value(json.loads(args.replot.read_text()))
         print(markdown_tables(res))
         plot(res, args.output)
         print(f"figure: {args.output}")
@@ -971,7 +950,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"figure: {args.output}")
     if args.json is not None:
         args.json.parent.mkdir(parents=True, exist_ok=True)
-        args.json.write_text(json.dumps(_jsonable(res), indent=1) + "\n")
+        args.json.write_text(json.dumps(to_json_value(res), indent=1) + "\n")
         print(f"numbers: {args.json}")
     return 0
 

@@ -92,6 +92,7 @@ from ship_gym.engine.ship import ShipSetup, build_simulator
 from ship_gym.engine.simulator import SimulationDiverged, Simulator
 from ship_gym.forces.diffraction import Diffraction
 from ship_gym.hydro import load_database
+from ship_gym.io_utils import from_json_value, to_json_value
 from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
 DTS: tuple[float, ...] = (0.4, 0.2, 0.1, 0.05, 0.025)
@@ -375,24 +376,6 @@ def plot(results: dict, path: Path) -> None:
     plt.close(fig)
 
 
-def _jsonable(x):
-    if isinstance(x, dict):
-        return {k: _jsonable(v) for k, v in x.items()}
-    if isinstance(x, list | tuple):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
-
-
-def _from_json(x):
-    if isinstance(x, dict):
-        return {k: _from_json(v) for k, v in x.items()}
-    if isinstance(x, list):
-        return [_from_json(v) for v in x]
-    return math.nan if x is None else x
-
-
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--output", type=Path, default=Path("out/convergence.png"))
@@ -415,7 +398,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = parser.parse_args(argv)
     if args.replot is not None:
-        results = _from_json(json.loads(args.replot.read_text()))["cases"]
+        results = from_json_value(json.loads(args.replot.read_text()))["cases"]
         print(format_table(results))
         plot(results, args.output)
         print(f"figure: {args.output}")
@@ -445,7 +428,7 @@ def main(argv: list[str] | None = None) -> int:
             "error_definition": "RMS(x - x_ref) / RMS(x_ref - x_ref(0)) on the 0.4 s grid",
             "cases": results,
         }
-        args.json.write_text(json.dumps(_jsonable(payload), indent=1))
+        args.json.write_text(json.dumps(to_json_value(payload), indent=1))
         print(f"numbers: {args.json}")
     return 0
 

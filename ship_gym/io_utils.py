@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import stat
 import tempfile
@@ -57,3 +58,30 @@ def atomic_write(
 def atomic_write_text(path: str | Path, text: str) -> Path:
     """Atomically write a text file (UTF-8)."""
     return atomic_write(path, lambda p: p.write_text(text, encoding="utf-8"))
+
+
+def to_json_value(x: object) -> object:
+    """``x`` with NumPy arrays and scalars turned into lists and Python numbers, tuples into
+    lists and non-finite floats into None (JSON has no NaN), recursively through dicts/lists."""
+    import numpy as np
+
+    if isinstance(x, dict):
+        return {k: to_json_value(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [to_json_value(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return to_json_value(x.tolist())
+    if isinstance(x, np.floating | np.integer | np.bool_):
+        return to_json_value(x.item())
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    return x
+
+
+def from_json_value(x: object) -> object:
+    """The inverse of :func:`to_json_value` for numbers: None back to NaN, recursively."""
+    if isinstance(x, dict):
+        return {k: from_json_value(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [from_json_value(v) for v in x]
+    return math.nan if x is None else x
