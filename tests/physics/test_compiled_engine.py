@@ -123,3 +123,21 @@ def test_record_equals_the_simulator_run_with_the_wave_elevation():
     np.testing.assert_allclose(got.t, ref.t, rtol=1e-12)
     np.testing.assert_allclose(got.elevation, ref.elevation, rtol=0, atol=1e-9)
     assert np.abs(ref.elevation).max() > 0.5  # the sea is up
+
+
+def test_the_parallel_loop_equals_the_serial_one_bit_for_bit():
+    # numba's threads over the ships (prange) change nothing: each ship's arithmetic is its own
+    import numba
+
+    setup = ShipSetup(
+        speed=8.0, propulsion=True, manoeuvring=True, rudder="autopilot", integrator="holloway"
+    )
+    fields = _fields(4)
+    serial = build_batch_simulator(setup, fields, backend="compiled")
+    parallel = build_batch_simulator(setup, fields, backend="compiled", parallel=True)
+    numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
+    for _ in range(10):
+        reds = [s.advance(5, {"heading": np.full(4, 0.2)}) for s in (serial, parallel)]
+    np.testing.assert_array_equal(parallel.eta, serial.eta)
+    np.testing.assert_array_equal(parallel.z, serial.z)
+    np.testing.assert_array_equal(reds[1].sum_sq_roll, reds[0].sum_sq_roll)
