@@ -6,6 +6,9 @@
   optionally, the simulator's answer (:mod:`ship_gym.analysis.intact_stability`).
 * ``dead-ship``: no propulsion, beam irregular seas; roll statistics and capsize probability over
   seeds (:mod:`ship_gym.analysis.intact_stability`).
+
+All three run on the compiled engine where the configuration allows it; ``--engine simulator``
+forces the single-ship reference Simulator.
 """
 
 from __future__ import annotations
@@ -13,6 +16,18 @@ from __future__ import annotations
 import argparse
 
 from ship_gym.cli_common import add_overrides_argument, parse_overrides, write_json
+
+ENGINE_HELP = (
+    "simulation path: 'auto' (default) the compiled engine (BatchSimulator) where the radiation "
+    "model and integrator allow it, else the single-ship Simulator; 'engine' or 'simulator' to "
+    "force one (the Simulator is the reference; both agree to rounding)"
+)
+
+
+def _add_engine_argument(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--engine", default="auto", choices=("auto", "engine", "simulator"), help=ENGINE_HELP
+    )
 
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
@@ -63,6 +78,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--plot", default="out/capsize_map.png", help="polar plot (PNG); '' to skip")
     p.add_argument("--json", default=None, help="write the per-cell summary to this JSON file")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _add_engine_argument(p)
     p.set_defaults(func=cmd_capsize_map)
 
     q = sub.add_parser(
@@ -87,6 +103,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     q.add_argument("--dt", type=float, default=0.1, help="physics time step [s]")
     q.add_argument("--json", default=None, help="write the numbers to this JSON file")
     q.add_argument("--plot", default="", help="roll time history (PNG) with --simulate")
+    _add_engine_argument(q)
     q.set_defaults(func=cmd_parametric_roll)
 
     d = sub.add_parser(
@@ -107,6 +124,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         "unpowered ship turns away from beam seas",
     )
     d.add_argument("--json", default=None, help="write the numbers to this JSON file")
+    _add_engine_argument(d)
     d.set_defaults(func=cmd_dead_ship)
 
 
@@ -134,7 +152,11 @@ def cmd_capsize_map(args: argparse.Namespace) -> int:
         f"{config.radiation}, n_jobs {args.n_jobs} → {args.results}"
     )
     result = cm.run_capsize_map(
-        config, args.results, n_jobs=args.n_jobs, progress=not args.no_progress
+        config,
+        args.results,
+        n_jobs=args.n_jobs,
+        progress=not args.no_progress,
+        engine=getattr(args, "engine", "auto"),
     )
     print(
         f"capsize angle {result.capsize_angle_deg:.1f}°; ran {result.n_run} cells "
@@ -176,7 +198,9 @@ def cmd_parametric_roll(args: argparse.Namespace) -> int:
     print(ist.format_check(check))
     payload: dict = {"check": ist.check_to_dict(check)}
     if args.simulate:
-        sim = ist.simulate_parametric_roll(check, duration=args.duration, dt=args.dt)
+        sim = ist.simulate_parametric_roll(
+            check, duration=args.duration, dt=args.dt, engine=getattr(args, "engine", "auto")
+        )
         print(
             f"simulator: max |φ| {sim.max_abs_roll_deg:.2f}° from an initial "
             f"{sim.initial_heel_deg:g}° heel; late amplitude / initial heel "
@@ -203,6 +227,7 @@ def cmd_dead_ship(args: argparse.Namespace) -> int:
         dt=args.dt,
         n_jobs=args.n_jobs,
         hold_yaw=args.hold_yaw,
+        engine=getattr(args, "engine", "auto"),
     )
     print(ist.format_dead_ship(res))
     if args.json:

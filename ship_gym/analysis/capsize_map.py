@@ -1,7 +1,7 @@
 """Capsize-risk maps: heading × Froude number (× sea state × seeds) under the heading autopilot.
 
-Each *cell* of the map is one run of the 6-DOF two-stage simulator
-(:func:`ship_gym.engine.ship.build_simulator`; the roll natural frequency of the damping
+Each *cell* of the map is one run of the 6-DOF two-stage model (the force models of
+:func:`ship_gym.engine.ship.build_force_models`; the roll natural frequency of the damping
 follows the loading condition, :func:`ship_gym.engine.ship.roll_natural_frequency`): the ship
 starts at the free-floating equilibrium heading north at U = Fn √(g L), keeps its heading with
 the PID autopilot (``ShipSetup(rudder="autopilot", manoeuvring=True, propulsion=True)``, command
@@ -13,19 +13,47 @@ Capsize is declared, and the run stopped, when
 
 * ``"roll"``: |φ| exceeds the capsize angle — by default the angle of vanishing stability of the
   loading condition (:func:`ship_gym.hull.righting_arm`, calm water, free sinkage and trim), or
-* ``"diverged"``: the simulator raises :class:`~ship_gym.engine.simulator.SimulationDiverged`
-  (a state that no longer makes sense, e.g. the hull flying out of the water).
+* ``"diverged"``: the state no longer makes sense (non-finite, or |ν| above the simulator's
+  limit, e.g. the hull flying out of the water): the single-ship simulator raises
+  :class:`~ship_gym.engine.simulator.SimulationDiverged`, the engine flags the ship.
+
+Both are checked after every physics step. The time to capsize is that of the first step beyond
+the angle (``"roll"``) or of the step that failed (``"diverged"``: the last valid time + Δt).
+
+Engine. Where the configuration allows it (radiation ``"state_space"``, ``"2a"``, ``"2b"`` or
+``"none"``; integrator ``"rk4"`` or ``"holloway"``) the cells of one (sea, heading, Froude
+number) run together on ONE :class:`~ship_gym.engine.batch.BatchSimulator`, a ship per seed
+(:func:`run_cells`, :func:`simulate_ships_until_capsize`): one compiled call
+(:meth:`~ship_gym.engine.batch.BatchSimulator.advance`) advances all of them by one recording
+interval (``record_every`` steps), its per-step reductions (``danger_steps`` with the capsize
+angle as threshold) and per-ship divergence flags tell which ship capsized in it. A ship that
+capsized is stopped there; its exact capsize step is then found by *replaying* it — reset to its
+initial state, the same chunks up to the one in which it capsized, then that chunk step by step
+— so the time to capsize, the statistics and the final state are those of the step-by-step
+run, not of the chunk end. (The compiled engine is bit-identical per ship for any batch size and
+chunk split, so the replay reproduces the run exactly; this is checked and a mismatch raises.
+On the engine's numpy backend the ships advance step by step instead, without replay.) The
+radiation convolution and the ABM integrator are implemented only in the single-ship
+:class:`~ship_gym.engine.simulator.Simulator` (:func:`~ship_gym.engine.ship.build_simulator`),
+the reference path these cells fall back to, one cell at a time. Both paths agree to rounding
+(≈ 1e-12 relative; tested); ``engine="simulator"`` forces the reference path. On the compiled
+engine a ship's result does not depend on the cells it runs with (bit for bit), so a map is the
+same run serially, in parallel, or resumed.
 
 Per cell: capsize yes/no, the reason, the time to capsize [s], max |φ| and RMS φ after the ramp
 [deg], max |θ| [deg], max heading deviation [deg] and the mean surge speed [m/s]. Over seeds a
 cell's capsize *probability* is the fraction of seeds that capsize (:func:`summarise`).
 
 Runs are resumable: :func:`run_capsize_map` writes a JSON-lines file whose first line is the
-configuration and every further line one finished cell, appended and ``fsync``-ed as each cell
-finishes (the parent process is the only writer, so parallel workers never interleave). A rerun
-with the same configuration skips the cells already there; a different configuration raises a
-ValueError naming the differing keys (results are never mixed). A torn last line (a crash during
-a write) is cut off before appending.
+configuration and every further line one finished cell, appended and ``fsync``-ed as each batch
+of cells finishes (the parent process is the only writer, so parallel workers never
+interleave). Besides the outcome, a record holds ``speed`` [m/s], ``cpu_s`` (the CPU time of its
+batch [s] divided by the batch's cells), ``engine`` (``"compiled"`` or ``"numpy"``: the
+:class:`~ship_gym.engine.batch.BatchSimulator` backend; ``"simulator"``: the single-ship
+reference) and ``batch_size`` (ships run together; 1 on the reference path); records written
+before these two fields existed lack them. A rerun with the same configuration skips the cells
+already there; a different configuration raises a ValueError naming the differing keys (results
+are never mixed). A torn last line (a crash during a write) is cut off before appending.
 
 Seeds: for an irregular sea the seed draws the wave phases (the same realisation for every
 heading and speed: common random numbers); for a regular wave it draws the wave phase ε at the
@@ -36,11 +64,12 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import functools
 import json
 import math
 import os
 import time
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
@@ -51,6 +80,7 @@ from ship_gym.typing import IntegratorName
 from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
 if TYPE_CHECKING:
+    from ship_gym.engine.batch import BatchSimulator
     from ship_gym.engine.ship import ShipSetup
     from ship_gym.engine.simulator import Simulator
 
@@ -59,23 +89,76 @@ __all__ = [
     "CapsizeMapConfig",
     "CapsizeMapResult",
     "Cell",
+    "EngineChoice",
     "RunOutcome",
     "SeaSpec",
     "autopilot_setup",
+    "build_cells_simulator",
     "capsize_angle_of",
+    "engine_supports",
     "load_results",
     "plot_capsize_map",
     "run_capsize_map",
     "run_cell",
+    "run_cells",
+    "simulate_ships_until_capsize",
     "simulate_until_capsize",
     "single_threaded_blas",
     "summarise",
+    "use_engine",
 ]
 
 FORMAT_VERSION = 1
 """Version of the results-file layout (part of the configuration header)."""
 
 CellRunner = Callable[["CapsizeMapConfig", "Cell", float], dict]
+
+EngineChoice = Literal["auto", "engine", "simulator"]
+"""Which path runs a capsize study: ``"auto"`` the engine
+(:class:`~ship_gym.engine.batch.BatchSimulator`) where the radiation model and integrator
+allow it (:func:`engine_supports`), else the single-ship reference
+:class:`~ship_gym.engine.simulator.Simulator`; ``"engine"`` the engine (NotImplementedError
+where unsupported); ``"simulator"`` the reference path."""
+
+ENGINE_RADIATION = ("state_space", "2a", "2b", "none")
+"""Radiation models of the engine (the convolution is single-ship only)."""
+ENGINE_INTEGRATORS = ("rk4", "holloway")
+"""Integrators of the engine (ABM is single-ship only)."""
+
+
+def engine_supports(radiation: str, integrator: str) -> bool:
+    """Whether the engine runs this radiation model and integrator (else the Simulator does).
+
+    Parameters
+    ----------
+    radiation : str
+        Radiation model (:class:`~ship_gym.engine.ship.ShipSetup`).
+    integrator : str
+        Time integrator.
+    """
+    return radiation in ENGINE_RADIATION and integrator in ENGINE_INTEGRATORS
+
+
+def use_engine(engine: EngineChoice, radiation: str, integrator: str) -> bool:
+    """Resolve an :data:`EngineChoice` for a configuration: True for the engine.
+
+    Raises
+    ------
+    ValueError
+        For an unknown choice.
+    NotImplementedError
+        For ``"engine"`` with a radiation model or integrator the engine does not have.
+    """
+    if engine not in ("auto", "engine", "simulator"):
+        raise ValueError(f"engine must be 'auto', 'engine' or 'simulator', got {engine!r}")
+    supported = engine_supports(radiation, integrator)
+    if engine == "engine" and not supported:
+        raise NotImplementedError(
+            f"the engine runs radiation {ENGINE_RADIATION} and integrators "
+            f"{ENGINE_INTEGRATORS}, not radiation={radiation!r}, integrator={integrator!r}; "
+            "use engine='auto' or 'simulator' (the single-ship reference path)"
+        )
+    return engine != "simulator" and supported
 
 
 # ----------------------------------------------------------------------------- sea states
@@ -356,8 +439,36 @@ class RunOutcome:
     simulated_time: float
 
 
+def _outcome(
+    series: dict[str, np.ndarray],
+    reason: str,
+    t_capsize: float | None,
+    simulated_time: float,
+    *,
+    heading_command: float,
+    stats_after: float,
+) -> RunOutcome:
+    """The statistics of a recorded run (the same for both paths)."""
+    t, eta, nu = series["t"], series["eta"], series["nu"]
+    late = t >= stats_after
+    if not late.any():
+        late = np.ones_like(t, bool)
+    dev = np.angle(np.exp(1j * (eta[:, 5] - heading_command)))
+    return RunOutcome(
+        capsized=reason != "none",
+        reason=reason,
+        time_to_capsize=None if t_capsize is None else float(t_capsize),
+        max_abs_roll_deg=float(np.degrees(np.max(np.abs(eta[:, 3])))),
+        rms_roll_deg=float(np.degrees(np.sqrt(np.mean(eta[late, 3] ** 2)))),
+        max_abs_pitch_deg=float(np.degrees(np.max(np.abs(eta[:, 4])))),
+        max_heading_deviation_deg=float(np.degrees(np.max(np.abs(dev)))),
+        mean_speed=float(np.mean(nu[late, 0])),
+        simulated_time=float(simulated_time),
+    )
+
+
 def simulate_until_capsize(
-    sim: Simulator,
+    sim: Simulator | BatchSimulator,
     duration: float,
     capsize_angle: float,
     *,
@@ -368,10 +479,17 @@ def simulate_until_capsize(
 ) -> tuple[RunOutcome, dict[str, np.ndarray]]:
     """Step a simulator until ``duration`` or capsize, recording the motions.
 
+    The ship is recorded at its initial state, every ``record_every`` steps and at the step
+    that ends the run (capsize, or the last valid state before a divergence); the statistics of
+    the :class:`RunOutcome` are taken over these samples. Capsize is checked after every step.
+
     Parameters
     ----------
-    sim : Simulator
-        A built simulator (at its initial state).
+    sim : Simulator or BatchSimulator
+        A built simulator at its initial state: the single-ship
+        :class:`~ship_gym.engine.simulator.Simulator` (stepped in Python), or a one-ship
+        :class:`~ship_gym.engine.batch.BatchSimulator`, run by
+        :func:`simulate_ships_until_capsize` (same results to rounding).
     duration : float
         Simulated time [s].
     capsize_angle : float
@@ -390,7 +508,29 @@ def simulate_until_capsize(
     RunOutcome, dict
         The outcome and the recorded series ``t`` [s], ``eta`` (n, 6), ``nu`` (n, 6),
         ``rudder`` (n,) [rad] (applied rudder angle where a rudder exists, else NaN).
+
+    Raises
+    ------
+    ValueError
+        For a BatchSimulator of more than one ship (use :func:`simulate_ships_until_capsize`).
     """
+    from ship_gym.engine.batch import BatchSimulator
+
+    if isinstance(sim, BatchSimulator):
+        if sim.n_ships != 1:
+            raise ValueError(
+                f"simulate_until_capsize runs one ship; this BatchSimulator has {sim.n_ships} "
+                "(use simulate_ships_until_capsize)"
+            )
+        return simulate_ships_until_capsize(
+            sim,
+            duration,
+            capsize_angle,
+            heading_command=heading_command,
+            record_every=record_every,
+            stats_after=stats_after,
+            progress=progress,
+        )[0]
     n = round(duration / sim.dt)
     sim.commands = {**sim.commands, "heading": float(heading_command)}
     rec_t, rec_eta, rec_nu, rec_rudder = [], [], [], []
@@ -431,23 +571,227 @@ def simulate_until_capsize(
         "nu": np.array(rec_nu),
         "rudder": np.array(rec_rudder),
     }
-    t, eta, nu = series["t"], series["eta"], series["nu"]
-    late = t >= stats_after
-    if not late.any():
-        late = np.ones_like(t, bool)
-    dev = np.angle(np.exp(1j * (eta[:, 5] - heading_command)))
-    outcome = RunOutcome(
-        capsized=reason != "none",
-        reason=reason,
-        time_to_capsize=None if t_capsize is None else float(t_capsize),
-        max_abs_roll_deg=float(np.degrees(np.max(np.abs(eta[:, 3])))),
-        rms_roll_deg=float(np.degrees(np.sqrt(np.mean(eta[late, 3] ** 2)))),
-        max_abs_pitch_deg=float(np.degrees(np.max(np.abs(eta[:, 4])))),
-        max_heading_deviation_deg=float(np.degrees(np.max(np.abs(dev)))),
-        mean_speed=float(np.mean(nu[late, 0])),
-        simulated_time=float(sim.t),
+    outcome = _outcome(
+        series,
+        reason,
+        t_capsize,
+        sim.t,
+        heading_command=heading_command,
+        stats_after=stats_after,
     )
     return outcome, series
+
+
+def simulate_ships_until_capsize(
+    sim: BatchSimulator,
+    duration: float,
+    capsize_angle: float,
+    *,
+    heading_command: float = 0.0,
+    record_every: int = 1,
+    stats_after: float = 0.0,
+    progress: bool = False,
+) -> list[tuple[RunOutcome, dict[str, np.ndarray]]]:
+    """:func:`simulate_until_capsize` for every ship of a batch, on the engine.
+
+    The ships advance together by chunks of ``record_every`` physics steps, one
+    :meth:`~ship_gym.engine.batch.BatchSimulator.advance` call each (one compiled call with the
+    compiled backend). Its reductions tell which ship had a step with |φ| > ``capsize_angle``
+    (``danger_steps``) or diverged in the chunk; such a ship is stopped (held by the engine's
+    per-ship freeze, its ``diverged`` flag, which this function restores at the end to the true
+    divergences). A ship that capsized inside a chunk is then *replayed*: reset to its initial
+    state and advanced by the same chunks up to that one (bit-identical: the engine's result per
+    ship does not depend on the chunk split or on the other ships), then step by step up to its
+    first step beyond the angle. Time to capsize, records and final state are therefore those of
+    the step-by-step run (:func:`simulate_until_capsize` on the Simulator gives the same to
+    rounding); the replay costs at most the simulated time to capsize of those ships (none with
+    ``record_every`` = 1). Ships that diverge stop at their last valid state, time to capsize
+    that time + Δt. On the engine's numpy backend (force models without a compiled version;
+    none in the capsize studies) the ships advance one step per call, with no replay.
+
+    Parameters
+    ----------
+    sim : BatchSimulator
+        N ships at a reset state (freshly built, or :meth:`~BatchSimulator.reset` with no step
+        since): the replay restarts a ship from there.
+    duration : float
+        Simulated time [s].
+    capsize_angle : float
+        |φ| beyond which a ship has capsized [rad].
+    heading_command : float
+        Autopilot set-point ψ_ref [rad] of every ship (ignored without an autopilot).
+    record_every : int
+        Record every n-th step (also the chunk length of the engine calls).
+    stats_after : float
+        RMS roll and mean speed are taken over t ≥ ``stats_after`` [s].
+    progress : bool
+        tqdm progress bar over the steps.
+
+    Returns
+    -------
+    list of (RunOutcome, dict)
+        Per ship, as :func:`simulate_until_capsize`.
+
+    Raises
+    ------
+    ValueError
+        If a ship has stepped since its reset, or ``record_every`` < 1.
+    RuntimeError
+        If a replay does not reproduce its ship's run (an engine that is not deterministic).
+    """
+    n_ships = sim.n_ships
+    every = int(record_every)
+    if every < 1:
+        raise ValueError(f"record_every must be >= 1, got {record_every!r}")
+    if np.any(sim.n_steps != 0) or sim.diverged.any():
+        raise ValueError(
+            "simulate_ships_until_capsize needs every ship at a reset state (freshly built or "
+            "reset, no step since): a ship that capsizes inside a chunk is replayed from it"
+        )
+    n = round(duration / sim.dt)
+    sim.commands = {**sim.commands, "heading": np.full(n_ships, float(heading_command))}
+    t0, eta0, nu0 = sim.t.copy(), sim.eta.copy(), sim.nu.copy()
+    rudder = _batch_rudder_probe(sim)
+    rec: list[dict[str, list]] = [
+        {"t": [], "eta": [], "nu": [], "rudder": []} for _ in range(n_ships)
+    ]
+
+    def record(ships: Iterable[int]) -> None:
+        angles = rudder()
+        for s in ships:
+            rec[s]["t"].append(float(sim.t[s]))
+            rec[s]["eta"].append(sim.eta[s].copy())
+            rec[s]["nu"].append(sim.nu[s].copy())
+            rec[s]["rudder"].append(float(angles[s]))
+
+    reason = ["none"] * n_ships
+    t_capsize: list[float | None] = [None] * n_ships
+    diverged = np.zeros(n_ships, dtype=bool)  # true divergences (the rest of the flags: frozen)
+    capsize_chunk: dict[int, int] = {}  # ship → chunk in which it capsized (to replay)
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=n, desc=f"simulating {n_ships} ships", unit="step", mininterval=0.5)
+    record(range(n_ships))
+    try:
+        # chunks of one recording interval; on the numpy backend (stepped in Python anyway, and
+        # bit-identical per ship only for the same set of running ships) single steps: no replay
+        length = every if sim.compiled else 1
+        done, chunk = 0, 0
+        while done < n and not sim.diverged.all():
+            k = min(length, n - done)
+            ran = np.flatnonzero(~sim.diverged)
+            red = sim.advance(k, danger_roll=capsize_angle)
+            done += k
+            for s in (int(x) for x in ran):
+                if red.danger_steps[s] > 0:  # capsized (before any divergence in the chunk)
+                    if k == 1:  # the chunk is the step
+                        reason[s], t_capsize[s] = "roll", float(sim.t[s])
+                        record([s])
+                    else:
+                        capsize_chunk[s] = chunk
+                    sim.diverged[s] = True  # stop it here
+                elif red.diverged[s]:
+                    reason[s], t_capsize[s] = "diverged", float(sim.t[s]) + sim.dt
+                    diverged[s] = True
+                    record([s])
+                elif done % every == 0:
+                    record([s])
+            chunk += 1
+            if bar is not None:
+                bar.update(k)
+        if capsize_chunk:
+            _replay_capsizes(sim, capsize_chunk, every, capsize_angle, (t0, eta0, nu0), rec)
+            for s in capsize_chunk:
+                reason[s], t_capsize[s] = "roll", float(sim.t[s])
+    finally:
+        sim.diverged[:] = diverged
+        if bar is not None:
+            bar.close()
+    out = []
+    for s in range(n_ships):
+        series = {key: np.array(values) for key, values in rec[s].items()}
+        outcome = _outcome(
+            series,
+            reason[s],
+            t_capsize[s],
+            float(sim.t[s]),
+            heading_command=heading_command,
+            stats_after=stats_after,
+        )
+        out.append((outcome, series))
+    return out
+
+
+def _replay_capsizes(
+    sim: BatchSimulator,
+    capsize_chunk: dict[int, int],
+    every: int,
+    capsize_angle: float,
+    initial: tuple[np.ndarray, np.ndarray, np.ndarray],
+    rec: list[dict[str, list]],
+) -> None:
+    """Find the capsize step of the ships ``capsize_chunk`` (ship → chunk index) by replay.
+
+    Every other ship is frozen; the replayed ships restart from their initial states
+    ``initial`` = (t, η, ν) and advance by chunks of ``every`` steps, each stepping singly
+    through the chunk in which it capsized until its first step with |φ| > ``capsize_angle``
+    (its state there is appended to its records ``rec`` and it is frozen).
+    """
+    t0, eta0, nu0 = initial
+    ships = np.array(sorted(capsize_chunk), dtype=np.int64)
+    sim.diverged[:] = True
+    sim.reset(ships, eta=eta0[ships], nu=nu0[ships], t0=t0[ships])
+    pending = {int(s) for s in ships}
+    chunk = 0
+    while pending:
+        due = sorted(s for s in pending if capsize_chunk[s] == chunk)
+        if due:
+            waiting = [s for s in pending if s not in due]
+            sim.diverged[waiting] = True
+            for s in due:  # the replay is at the start of the chunk: the last record
+                if not (
+                    float(sim.t[s]) == rec[s]["t"][-1]
+                    and np.array_equal(sim.eta[s], rec[s]["eta"][-1])
+                    and np.array_equal(sim.nu[s], rec[s]["nu"][-1])
+                ):
+                    raise RuntimeError(
+                        f"the replay of ship {s} does not reproduce its run at t = "
+                        f"{rec[s]['t'][-1]:.3f} s (the engine should be deterministic per ship)"
+                    )
+            left = list(due)
+            for _ in range(every):
+                red = sim.advance(1, danger_roll=capsize_angle)
+                for s in list(left):
+                    if red.danger_steps[s] > 0:
+                        rec[s]["t"].append(float(sim.t[s]))
+                        rec[s]["eta"].append(sim.eta[s].copy())
+                        rec[s]["nu"].append(sim.nu[s].copy())
+                        angles = _batch_rudder_probe(sim)()
+                        rec[s]["rudder"].append(float(angles[s]))
+                        sim.diverged[s] = True
+                        left.remove(s)
+                        pending.discard(s)
+                    elif red.diverged[s]:
+                        left.clear()  # reported below
+                        break
+                if not left:
+                    break
+            if left or any(s in pending for s in due):
+                raise RuntimeError(
+                    f"the replay of ships {due} does not capsize in chunk {chunk} as their run "
+                    "did (the engine should be deterministic per ship)"
+                )
+            sim.diverged[waiting] = False
+        if pending:
+            red = sim.advance(every, danger_roll=capsize_angle)
+            if red.diverged[list(pending)].any():
+                raise RuntimeError(
+                    "a replayed ship diverged where its run did not (the engine should be "
+                    "deterministic per ship)"
+                )
+            chunk += 1
 
 
 def _rudder_probe(sim: Simulator) -> Callable[[], float]:
@@ -462,6 +806,21 @@ def _rudder_probe(sim: Simulator) -> Callable[[], float]:
 
             return angle
     return lambda: math.nan
+
+
+def _batch_rudder_probe(sim: BatchSimulator) -> Callable[[], np.ndarray]:
+    """A callable returning the (N,) applied rudder angles [rad] (NaN without a rudder)."""
+    from ship_gym.engine.batch_control import BatchActuatedSurfaces
+
+    for f in sim.forces:
+        if isinstance(f, BatchActuatedSurfaces) and f.key == "rudder" and f.servo is not None:
+
+            def angle(f: BatchActuatedSurfaces = f) -> np.ndarray:
+                return np.asarray(f.servo.applied(f.angle), dtype=float)  # type: ignore[union-attr]
+
+            return angle
+    nan = np.full(sim.n_ships, math.nan)
+    return lambda: nan
 
 
 def autopilot_setup(
@@ -532,18 +891,116 @@ def cell_setup(config: CapsizeMapConfig, cell: Cell) -> tuple[ShipSetup, Any, fl
     return setup, sea, math.radians(config.headings_deg[cell.heading]), rng
 
 
-def run_cell(config: CapsizeMapConfig, cell: Cell, capsize_angle_deg: float) -> dict:
-    """Simulate one cell and return its JSON-ready record (the default cell runner).
+def build_cells_simulator(
+    config: CapsizeMapConfig, cells: Sequence[Cell], *, backend: str = "auto"
+) -> BatchSimulator:
+    """One :class:`~ship_gym.engine.batch.BatchSimulator` whose ship i is ``cells[i]``.
+
+    The cells must share their sea state, heading and Froude number (they differ by seed: ship
+    i has the wave field of seed i, drawn as in :func:`cell_setup`); each ship behaves as the
+    cell's :func:`~ship_gym.engine.ship.build_simulator` would.
+
+    Parameters
+    ----------
+    config : CapsizeMapConfig
+        The map (radiation and integrator supported by the engine: :func:`engine_supports`).
+    cells : sequence of Cell
+        The cells (≥ 1).
+    backend : {"auto", "compiled", "numpy"}
+        Engine backend (:func:`~ship_gym.engine.batch.build_batch_simulator`).
+
+    Raises
+    ------
+    ValueError
+        If ``cells`` is empty or mixes seas, headings or Froude numbers.
+    """
+    from ship_gym.engine.batch import build_batch_simulator
+    from ship_gym.engine.ship import wave_field_for
+
+    if not cells:
+        raise ValueError("cells must not be empty")
+    groups = {(c.sea, c.heading, c.froude) for c in cells}
+    if len(groups) != 1:
+        raise ValueError(
+            "the cells of one engine batch must share sea, heading and Froude number (they "
+            f"differ by seed); got (sea, heading, froude) indices {sorted(groups)}"
+        )
+    fields = []
+    for cell in cells:
+        setup, sea, beta, rng = cell_setup(config, cell)
+        fields.append(wave_field_for(sea, beta, rng))
+    return build_batch_simulator(
+        setup,
+        fields,
+        sea=sea,
+        wave_heading=beta,
+        backend=backend,  # type: ignore[arg-type]
+    )
+
+
+def run_cells(
+    config: CapsizeMapConfig,
+    cells: Sequence[Cell],
+    capsize_angle_deg: float,
+    *,
+    engine: EngineChoice = "auto",
+) -> list[dict]:
+    """Simulate cells of one (sea, heading, Froude number) and return their records.
+
+    On the engine (:data:`EngineChoice`) the cells run as the ships of one batch
+    (:func:`build_cells_simulator`, :func:`simulate_ships_until_capsize`), each with the result
+    it has alone; on the reference path one :class:`~ship_gym.engine.simulator.Simulator`
+    after the other.
 
     Parameters
     ----------
     config : CapsizeMapConfig
         The map.
-    cell : Cell
-        Which run.
+    cells : sequence of Cell
+        Cells sharing sea, heading and Froude number.
     capsize_angle_deg : float
         |φ| counted as capsize [deg].
+    engine : {"auto", "engine", "simulator"}
+        Which path (:data:`EngineChoice`).
+
+    Returns
+    -------
+    list of dict
+        Per cell (in order): the :class:`RunOutcome` fields, ``speed`` [m/s], ``cpu_s`` [s]
+        (the batch's CPU time, build included, divided by its cells), ``engine``
+        (``"compiled"``, ``"numpy"`` or ``"simulator"``) and ``batch_size``.
     """
+    cells = list(cells)
+    if not use_engine(engine, config.radiation, config.integrator):
+        return [_run_cell_simulator(config, c, capsize_angle_deg) for c in cells]
+    if not cells:
+        return []
+    t0 = time.process_time()
+    sim = build_cells_simulator(config, cells)
+    setup, _, _, _ = cell_setup(config, cells[0])
+    results = simulate_ships_until_capsize(
+        sim,
+        config.duration,
+        math.radians(capsize_angle_deg),
+        record_every=config.record_every,
+        stats_after=config.seas[cells[0].sea].ramp_time,
+    )
+    cpu = (time.process_time() - t0) / len(cells)
+    path = "compiled" if sim.compiled else "numpy"
+    return [
+        {
+            **dataclasses.asdict(outcome),
+            "speed": setup.speed,
+            "cpu_s": cpu,
+            "engine": path,
+            "batch_size": len(cells),
+        }
+        for outcome, _ in results
+    ]
+
+
+def _run_cell_simulator(config: CapsizeMapConfig, cell: Cell, capsize_angle_deg: float) -> dict:
+    """One cell on the single-ship reference :class:`~ship_gym.engine.simulator.Simulator`."""
     from ship_gym.engine.ship import build_simulator
 
     t0 = time.process_time()
@@ -557,7 +1014,36 @@ def run_cell(config: CapsizeMapConfig, cell: Cell, capsize_angle_deg: float) -> 
         record_every=config.record_every,
         stats_after=spec.ramp_time,
     )
-    return {**dataclasses.asdict(outcome), "speed": setup.speed, "cpu_s": time.process_time() - t0}
+    return {
+        **dataclasses.asdict(outcome),
+        "speed": setup.speed,
+        "cpu_s": time.process_time() - t0,
+        "engine": "simulator",
+        "batch_size": 1,
+    }
+
+
+def run_cell(
+    config: CapsizeMapConfig,
+    cell: Cell,
+    capsize_angle_deg: float,
+    *,
+    engine: EngineChoice = "auto",
+) -> dict:
+    """Simulate one cell and return its JSON-ready record (:func:`run_cells` of one cell).
+
+    Parameters
+    ----------
+    config : CapsizeMapConfig
+        The map.
+    cell : Cell
+        Which run.
+    capsize_angle_deg : float
+        |φ| counted as capsize [deg].
+    engine : {"auto", "engine", "simulator"}
+        Which path (:data:`EngineChoice`).
+    """
+    return run_cells(config, [cell], capsize_angle_deg, engine=engine)[0]
 
 
 # ----------------------------------------------------------------------------- results file
@@ -659,9 +1145,7 @@ def single_threaded_blas() -> Iterator[None]:
         yield
 
 
-def _run_keyed(runner: CellRunner, config: CapsizeMapConfig, cell: Cell, angle: float) -> dict:
-    with single_threaded_blas():
-        out = runner(config, cell, angle)
+def _keyed(config: CapsizeMapConfig, cell: Cell, out: dict) -> dict:
     return {
         "key": cell.key,
         "sea": cell.sea,
@@ -672,6 +1156,42 @@ def _run_keyed(runner: CellRunner, config: CapsizeMapConfig, cell: Cell, angle: 
     }
 
 
+def _run_keyed(runner: CellRunner, config: CapsizeMapConfig, cell: Cell, angle: float) -> dict:
+    with single_threaded_blas():
+        out = runner(config, cell, angle)
+    return _keyed(config, cell, out)
+
+
+def _run_keyed_one(
+    runner: CellRunner, config: CapsizeMapConfig, cell: Cell, angle: float
+) -> list[dict]:
+    return [_run_keyed(runner, config, cell, angle)]
+
+
+def _run_keyed_batch(
+    config: CapsizeMapConfig, cells: list[Cell], angle: float, engine: EngineChoice
+) -> list[dict]:
+    with single_threaded_blas():
+        outs = run_cells(config, cells, angle, engine=engine)
+    return [_keyed(config, c, o) for c, o in zip(cells, outs, strict=True)]
+
+
+MAX_BATCH = 16
+"""Most cells (seeds) per engine batch of :func:`run_capsize_map` (results are written per
+batch: this bounds what an interruption loses)."""
+
+
+def _batches(pending: list[Cell], n_jobs: int) -> list[list[Cell]]:
+    """Pending cells grouped by (sea, heading, Froude number), in order, cut to at most
+    :data:`MAX_BATCH` cells — and, with ``n_jobs`` > 1, to ⌈len(pending)/n_jobs⌉ so that every
+    worker has work."""
+    groups: dict[tuple[int, int, int], list[Cell]] = {}
+    for c in pending:
+        groups.setdefault((c.sea, c.heading, c.froude), []).append(c)
+    size = max(1, min(MAX_BATCH, math.ceil(len(pending) / max(1, n_jobs))))
+    return [g[i : i + size] for g in groups.values() for i in range(0, len(g), size)]
+
+
 def run_capsize_map(
     config: CapsizeMapConfig,
     results_path: str | Path,
@@ -679,8 +1199,16 @@ def run_capsize_map(
     n_jobs: int = 1,
     progress: bool = True,
     cell_runner: CellRunner | None = None,
+    engine: EngineChoice = "auto",
 ) -> CapsizeMapResult:
-    """Run (or resume) a capsize map, writing each cell as it finishes.
+    """Run (or resume) a capsize map, writing the cells as they finish.
+
+    With the default runner, the pending seeds of each (sea, heading, Froude number) run as one
+    engine batch (:func:`run_cells`; at most :data:`MAX_BATCH` seeds, split further so that
+    ``n_jobs`` workers all have work) and
+    their records are written when the batch finishes; on the reference path (``engine``, or a
+    configuration the engine lacks) and with a ``cell_runner``, cell by cell. A cell's result
+    does not depend on its batch.
 
     Parameters
     ----------
@@ -693,8 +1221,10 @@ def run_capsize_map(
     progress : bool
         tqdm progress bar over cells.
     cell_runner : callable, optional
-        ``runner(config, cell, capsize_angle_deg) -> dict`` (default :func:`run_cell`); must be
-        picklable for ``n_jobs > 1``.
+        ``runner(config, cell, capsize_angle_deg) -> dict``, called per cell (default: the
+        batched :func:`run_cells`); must be picklable for ``n_jobs > 1``.
+    engine : {"auto", "engine", "simulator"}
+        Path of the default runner (:data:`EngineChoice`; ignored with a ``cell_runner``).
 
     Raises
     ------
@@ -703,7 +1233,10 @@ def run_capsize_map(
     """
     if int(n_jobs) < 1:
         raise ValueError(f"n_jobs must be >= 1, got {n_jobs!r}")
-    runner = run_cell if cell_runner is None else cell_runner
+    batched = cell_runner is None and use_engine(engine, config.radiation, config.integrator)
+    runner: CellRunner = (
+        functools.partial(run_cell, engine=engine) if cell_runner is None else cell_runner
+    )
     path = Path(results_path)
     wanted = config.to_dict()
     t0 = time.perf_counter()
@@ -737,20 +1270,27 @@ def run_capsize_map(
         from tqdm import tqdm
 
         bar = tqdm(total=len(pending), desc="capsize map", unit="cell")
+    if batched:
+        tasks = [
+            (_run_keyed_batch, (config, b, angle, engine)) for b in _batches(pending, int(n_jobs))
+        ]
+    else:
+        tasks = [(_run_keyed_one, (runner, config, c, angle)) for c in pending]
     try:
-        if n_jobs == 1 or len(pending) <= 1:
-            results: Iterable[dict] = (_run_keyed(runner, config, c, angle) for c in pending)
+        if n_jobs == 1 or len(tasks) <= 1:
+            results: Iterable[list[dict]] = (fn(*a) for fn, a in tasks)
         else:
             from joblib import Parallel, delayed
 
             results = Parallel(n_jobs=int(n_jobs), return_as="generator_unordered")(
-                delayed(_run_keyed)(runner, config, c, angle) for c in pending
+                delayed(fn)(*a) for fn, a in tasks
             )
-        for rec in results:
-            _append_record(path, rec)
-            done[rec["key"]] = rec
+        for batch in results:
+            for rec in batch:
+                _append_record(path, rec)
+                done[rec["key"]] = rec
             if bar is not None:
-                bar.update(1)
+                bar.update(len(batch))
     finally:
         if bar is not None:
             bar.close()

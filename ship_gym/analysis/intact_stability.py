@@ -28,13 +28,18 @@ B1 + (8/3π) ω_φ φ_a B2 at a small amplitude φ_a (default 5°), over 2√(C4
 
 :func:`simulate_parametric_roll` gives the simulator's answer: the 6-DOF model (autopilot,
 propeller) in the same regular wave at the same speed, from a small initial heel; roll grows or
-decays.
+decays. It runs on the engine (a one-ship :class:`~ship_gym.engine.batch.BatchSimulator`,
+:func:`ship_gym.analysis.capsize_map.simulate_ships_until_capsize`); ``engine="simulator"``
+runs the single-ship reference :class:`~ship_gym.engine.simulator.Simulator` instead (same
+answer to rounding).
 
 Dead ship
 ---------
 :func:`dead_ship`: no propulsion, no rudder, zero speed, beam irregular seas (long-crested
 JONSWAP); roll statistics and the capsize probability over seeds (capsize as in
-:mod:`ship_gym.analysis.capsize_map`).
+:mod:`ship_gym.analysis.capsize_map`). The seeds run as the ships of one engine batch (one
+batch per worker with ``n_jobs`` > 1; a seed's result does not depend on its batch), or, with
+``engine="simulator"``, one single-ship Simulator each.
 """
 
 from __future__ import annotations
@@ -42,6 +47,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from typing import Literal
 
 import numpy as np
 
@@ -433,6 +439,7 @@ def simulate_parametric_roll(
     initial_heel_deg: float = 2.0,
     hold_speed: bool = True,
     progress: bool = False,
+    engine: Literal["auto", "engine", "simulator"] = "auto",
 ) -> ParametricRollSimulation:
     """Run the 6-DOF simulator in the wave of a check, from a small initial heel.
 
@@ -446,11 +453,29 @@ def simulate_parametric_roll(
     is about: at constant rpm the S175 in steep head seas at U = 3 m/s slows to ≈ 0.9 m/s mean
     (added resistance of the nonlinear Froude–Krylov force), which detunes ω_e/ω_φ from 2.0 to
     ≈ 1.8, outside the instability tongue. ``hold_speed=False`` gives the constant-rpm answer.
-    """
-    import dataclasses
 
-    from ship_gym.analysis.capsize_map import capsize_angle_of, simulate_until_capsize
-    from ship_gym.engine.ship import ShipSetup, build_simulator
+    Parameters
+    ----------
+    check : ParametricRollCheck
+        The wave, speed, heading and loading condition.
+    duration, dt : float
+        Run length and physics step [s].
+    initial_heel_deg : float
+        Initial heel φ₀ [deg].
+    hold_speed : bool
+        Hold surge at U.
+    progress : bool
+        tqdm progress bar.
+    engine : {"auto", "engine", "simulator"}
+        The engine (default; RK4 and state-space radiation are engine models) or the
+        single-ship reference Simulator (:data:`ship_gym.analysis.capsize_map.EngineChoice`).
+    """
+    from ship_gym.analysis.capsize_map import (
+        capsize_angle_of,
+        simulate_until_capsize,
+        use_engine,
+    )
+    from ship_gym.engine.ship import ShipSetup, build_simulator, wave_field_for
     from ship_gym.waves.sea_state import RegularWave
 
     setup = ShipSetup(
@@ -464,12 +489,21 @@ def simulate_parametric_roll(
         free_dofs=(not hold_speed, True, True, True, True, True),
     )
     sea = RegularWave(height=check.height, wavelength=check.wavelength, ramp_time=50.0)
-    sim = build_simulator(setup, sea, wave_heading=math.radians(check.heading_deg))
-    eta0 = sim.eta.copy()
-    eta0[3] = math.radians(initial_heel_deg)
-    commands = dict(sim.commands)
-    sim.reset(eta=eta0)
-    sim.commands = commands
+    beta = math.radians(check.heading_deg)
+    if use_engine(engine, setup.radiation, setup.integrator):
+        from ship_gym.engine.batch import build_batch_simulator
+
+        sim = build_batch_simulator(setup, [wave_field_for(sea, beta)], sea=sea, wave_heading=beta)
+        eta0 = sim.eta[0].copy()
+        eta0[3] = math.radians(initial_heel_deg)
+        sim.reset(eta=eta0)  # commands (the trimmed shaft speed) are kept
+    else:
+        sim = build_simulator(setup, sea, wave_heading=beta)
+        eta0 = sim.eta.copy()
+        eta0[3] = math.radians(initial_heel_deg)
+        commands = dict(sim.commands)
+        sim.reset(eta=eta0)
+        sim.commands = commands
     angle = capsize_angle_of(check.hull, check.hull_overrides)
     outcome, series = simulate_until_capsize(
         sim, duration, math.radians(angle), record_every=5, progress=progress
@@ -484,7 +518,6 @@ def simulate_parametric_roll(
     if outcome.capsized:
         late_amp = outcome.max_abs_roll_deg
     ratio = late_amp / initial_heel_deg if initial_heel_deg > 0 else math.inf
-    del dataclasses
     return ParametricRollSimulation(
         initial_heel_deg=initial_heel_deg,
         hold_speed=hold_speed,
@@ -570,19 +603,26 @@ class DeadShipResult:
     max_abs_roll_deg: float
 
 
+def _dead_ship_setup(hull, overrides, dt, hold_yaw):
+    from ship_gym.engine.ship import ShipSetup
+
+    return ShipSetup(
+        hull=hull,
+        hull_overrides=dict(overrides),
+        speed=0.0,
+        dt=dt,
+        free_dofs=(True, True, True, True, True, not hold_yaw),
+    )
+
+
 def _dead_ship_seed(hull, overrides, hs, tp, seed, duration, dt, angle, hold_yaw) -> dict:
+    """One seed on the single-ship reference Simulator."""
     from ship_gym.analysis.capsize_map import simulate_until_capsize, single_threaded_blas
-    from ship_gym.engine.ship import ShipSetup, build_simulator
+    from ship_gym.engine.ship import build_simulator
     from ship_gym.waves.sea_state import IrregularSea
 
     with single_threaded_blas():
-        setup = ShipSetup(
-            hull=hull,
-            hull_overrides=dict(overrides),
-            speed=0.0,
-            dt=dt,
-            free_dofs=(True, True, True, True, True, not hold_yaw),
-        )
+        setup = _dead_ship_setup(hull, overrides, dt, hold_yaw)
         sea = IrregularSea(hs=hs, tp=tp)
         sim = build_simulator(
             setup, sea, wave_heading=math.pi / 2.0, rng=np.random.default_rng(seed)
@@ -591,6 +631,25 @@ def _dead_ship_seed(hull, overrides, hs, tp, seed, duration, dt, angle, hold_yaw
             sim, duration, math.radians(angle), record_every=5, stats_after=sea.ramp_time
         )
     return {"seed": seed, **asdict(out)}
+
+
+def _dead_ship_seeds(hull, overrides, hs, tp, seeds, duration, dt, angle, hold_yaw) -> list:
+    """Seeds as the ships of one engine batch (each as it would run alone)."""
+    from ship_gym.analysis.capsize_map import simulate_ships_until_capsize, single_threaded_blas
+    from ship_gym.engine.batch import build_batch_simulator
+    from ship_gym.engine.ship import wave_field_for
+    from ship_gym.waves.sea_state import IrregularSea
+
+    with single_threaded_blas():
+        setup = _dead_ship_setup(hull, overrides, dt, hold_yaw)
+        sea = IrregularSea(hs=hs, tp=tp)
+        beta = math.pi / 2.0
+        fields = [wave_field_for(sea, beta, np.random.default_rng(s)) for s in seeds]
+        sim = build_batch_simulator(setup, fields, sea=sea, wave_heading=beta)
+        results = simulate_ships_until_capsize(
+            sim, duration, math.radians(angle), record_every=5, stats_after=sea.ramp_time
+        )
+    return [{"seed": s, **asdict(out)} for s, (out, _) in zip(seeds, results, strict=True)]
 
 
 def dead_ship(
@@ -604,6 +663,7 @@ def dead_ship(
     dt: float = 0.1,
     n_jobs: int = 1,
     hold_yaw: bool = False,
+    engine: Literal["auto", "engine", "simulator"] = "auto",
 ) -> DeadShipResult:
     """Dead ship (no propulsion, no rudder, U = 0) in beam long-crested JONSWAP seas.
 
@@ -626,20 +686,37 @@ def dead_ship(
         joblib worker processes.
     hold_yaw : bool
         Hold the heading (beam-on throughout).
+    engine : {"auto", "engine", "simulator"}
+        The seeds as one engine batch per worker (default) or one single-ship reference
+        Simulator each (:data:`ship_gym.analysis.capsize_map.EngineChoice`).
     """
-    from ship_gym.analysis.capsize_map import capsize_angle_of
+    from ship_gym.analysis.capsize_map import capsize_angle_of, use_engine
 
     overrides = dict(hull_overrides or {})
     if not seeds:
         raise ValueError("seeds must not be empty")
     angle = capsize_angle_of(hull, overrides)
-    args = [(hull, overrides, hs, tp, int(s), duration, dt, angle, hold_yaw) for s in seeds]
-    if n_jobs == 1:
-        outcomes = [_dead_ship_seed(*a) for a in args]
-    else:
-        from joblib import Parallel, delayed
+    seeds_ = [int(s) for s in seeds]
+    if use_engine(engine, "state_space", "rk4"):  # the dead ship's radiation and integrator
+        n_batches = max(1, min(int(n_jobs), len(seeds_)))
+        size = math.ceil(len(seeds_) / n_batches)
+        batches = [seeds_[i : i + size] for i in range(0, len(seeds_), size)]
+        args_b = [(hull, overrides, hs, tp, b, duration, dt, angle, hold_yaw) for b in batches]
+        if len(batches) == 1:
+            parts = [_dead_ship_seeds(*a) for a in args_b]
+        else:
+            from joblib import Parallel, delayed
 
-        outcomes = Parallel(n_jobs=n_jobs)(delayed(_dead_ship_seed)(*a) for a in args)
+            parts = Parallel(n_jobs=n_jobs)(delayed(_dead_ship_seeds)(*a) for a in args_b)
+        outcomes = [o for part in parts for o in part]
+    else:
+        args = [(hull, overrides, hs, tp, s, duration, dt, angle, hold_yaw) for s in seeds_]
+        if n_jobs == 1:
+            outcomes = [_dead_ship_seed(*a) for a in args]
+        else:
+            from joblib import Parallel, delayed
+
+            outcomes = Parallel(n_jobs=n_jobs)(delayed(_dead_ship_seed)(*a) for a in args)
     return DeadShipResult(
         hull=hull,
         hull_overrides=overrides,

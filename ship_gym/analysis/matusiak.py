@@ -13,7 +13,7 @@ length: λ = 1.5 L = 262.5 m and A_w = 4.5 m × 175/150 = 5.25 m (H = 10.5 m, H/
 same steepness as his 9 m / 225 m). Froude number and heading are his. Our setup, as far as the
 paper describes one (it gives no autopilot gains or propeller data):
 
-* the two-stage simulator (:func:`ship_gym.engine.ship.build_simulator`):
+* the two-stage model (the force models of :func:`ship_gym.engine.ship.build_force_models`):
   nonlinear Froude–Krylov + hydrostatics on the instantaneous wetted hull, linear diffraction
   at the encounter frequency, Ikeda viscous roll damping, Holtrop resistance + B-series
   propeller at the calm-water self-propulsion rpm (held constant), hull manoeuvring forces and
@@ -24,6 +24,14 @@ paper describes one (it gives no autopilot gains or propeller data):
   error ≤ 1e-6 against Δt = 0.0125 s in steep regular waves);
 * capsize: |φ| beyond the angle of vanishing stability of the loading condition, or the
   simulator diverging (:mod:`ship_gym.analysis.capsize_map`).
+
+The runs use the engine (a one-ship :class:`~ship_gym.engine.batch.BatchSimulator`,
+:meth:`Scenario.build_engine`, run by
+:func:`~ship_gym.analysis.capsize_map.simulate_ships_until_capsize`) for the state-space, 2a and
+2b radiation with RK4 or Holloway; the direct convolution and the ABM integrator exist only in
+the single-ship :class:`~ship_gym.engine.simulator.Simulator` (:meth:`Scenario.build`), which
+runs those. The two paths agree to rounding (``run_scenario(..., engine="simulator")`` forces
+the reference).
 
 Heading 0° is following seas in both Matusiak's convention and ours (β = χ − ψ).
 """
@@ -207,12 +215,31 @@ class Scenario:
         )
 
     def build(self):
-        """A simulator at the start of the run (heading north, waves to β)."""
+        """The single-ship :class:`~ship_gym.engine.simulator.Simulator` at the start of the
+        run (heading north, waves to β): the reference path."""
         from ship_gym.engine.ship import build_simulator
 
         length = self.length()
         return build_simulator(
             self.setup(length), self.sea(length), wave_heading=math.radians(self.heading_deg)
+        )
+
+    def build_engine(self):
+        """The run as a one-ship :class:`~ship_gym.engine.batch.BatchSimulator` (the engine).
+
+        Raises
+        ------
+        NotImplementedError
+            For the convolution radiation or the ABM integrator (use :meth:`build`).
+        """
+        from ship_gym.engine.batch import build_batch_simulator
+        from ship_gym.engine.ship import wave_field_for
+
+        length = self.length()
+        sea = self.sea(length)
+        beta = math.radians(self.heading_deg)
+        return build_batch_simulator(
+            self.setup(length), [wave_field_for(sea, beta)], sea=sea, wave_heading=beta
         )
 
 
@@ -246,6 +273,9 @@ class ScenarioResult:
         Time histories: [s], [rad] ×3, applied rudder [rad], surge speed [m/s].
     cpu_s : float
         CPU time of the run (build included) [s].
+    engine : str
+        Path that ran it: ``"compiled"`` or ``"numpy"`` (the engine's backend) or
+        ``"simulator"`` (the single-ship reference).
     """
 
     scenario: Scenario
@@ -268,6 +298,7 @@ class ScenarioResult:
     rudder: np.ndarray
     u: np.ndarray
     cpu_s: float
+    engine: str = "simulator"
 
     def row(self) -> dict:
         """Scalars for the CSV table."""
@@ -292,6 +323,7 @@ class ScenarioResult:
             "encounter_frequency_rad_s": round(self.encounter_frequency, 4),
             "roll_natural_frequency_rad_s": round(self.roll_natural_frequency, 4),
             "cpu_s": round(self.cpu_s, 1),
+            "engine": self.engine,
         }
 
 
@@ -330,7 +362,13 @@ def study_scenarios(
     return out
 
 
-def run_scenario(scenario: Scenario, *, record_every: int = 5, progress: bool = False):
+def run_scenario(
+    scenario: Scenario,
+    *,
+    record_every: int = 5,
+    progress: bool = False,
+    engine: Literal["auto", "engine", "simulator"] = "auto",
+):
     """Simulate one scenario (stopped at capsize).
 
     Parameters
@@ -341,12 +379,20 @@ def run_scenario(scenario: Scenario, *, record_every: int = 5, progress: bool = 
         Record every n-th step of the time histories.
     progress : bool
         tqdm progress bar.
+    engine : {"auto", "engine", "simulator"}
+        ``"auto"``: the engine (:meth:`Scenario.build_engine`) unless the scenario needs the
+        single-ship Simulator (convolution, ABM); ``"simulator"`` forces the reference path
+        (:data:`ship_gym.analysis.capsize_map.EngineChoice`).
 
     Returns
     -------
     ScenarioResult
     """
-    from ship_gym.analysis.capsize_map import capsize_angle_of, simulate_until_capsize
+    from ship_gym.analysis.capsize_map import (
+        capsize_angle_of,
+        simulate_until_capsize,
+        use_engine,
+    )
     from ship_gym.engine.ship import roll_natural_frequency
     from ship_gym.hull import equilibrium, hydrostatics, load_hull
     from ship_gym.hydro import load_database
@@ -357,7 +403,8 @@ def run_scenario(scenario: Scenario, *, record_every: int = 5, progress: bool = 
     eq = equilibrium(hull)
     gm = hydrostatics(hull, heave=eq.heave, trim=eq.trim).gmt
     angle = capsize_angle_of(scenario.hull, scenario.hull_overrides)
-    sim = scenario.build()
+    on_engine = use_engine(engine, scenario.radiation, scenario.integrator)
+    sim = scenario.build_engine() if on_engine else scenario.build()
     sea = scenario.sea(hull.particulars.lpp)
     w_e = abs(
         float(
@@ -397,4 +444,5 @@ def run_scenario(scenario: Scenario, *, record_every: int = 5, progress: bool = 
         rudder=series["rudder"],
         u=series["nu"][:, 0],
         cpu_s=time.process_time() - t0,
+        engine=("compiled" if sim.compiled else "numpy") if on_engine else "simulator",
     )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 from typing import ClassVar
@@ -225,3 +226,120 @@ def test_cli_parses_and_runs(tmp_path, capsys):
     assert payload["summary"][0]["capsize_probability"] == 0.0
     assert (tmp_path / "map.png").stat().st_size > 0
     assert "ran 1 cells" in capsys.readouterr().out
+
+
+# ----------------------------------------------------------------------------- engine path
+_OUTCOME_FLOATS = (
+    "max_abs_roll_deg",
+    "rms_roll_deg",
+    "max_abs_pitch_deg",
+    "max_heading_deviation_deg",
+    "mean_speed",
+    "simulated_time",
+    "speed",
+)
+
+
+def _assert_same_outcome(a: dict, b: dict) -> None:
+    """Engine vs Simulator: same outcome, statistics to rounding (the paths agree to ≈ 1e-12;
+    1e-9 relative leaves room for the growth of rounding over a nonlinear run)."""
+    assert a["capsized"] == b["capsized"] and a["reason"] == b["reason"]
+    if a["time_to_capsize"] is None:
+        assert b["time_to_capsize"] is None
+    else:  # the engine finds the exact capsize step (replay), not the chunk end
+        assert b["time_to_capsize"] == pytest.approx(a["time_to_capsize"], rel=0, abs=1e-9)
+    for k in (k for k in _OUTCOME_FLOATS if k in a):
+        assert b[k] == pytest.approx(a[k], rel=1e-9, abs=1e-12), k
+
+
+def test_engine_cell_equals_simulator_cell(serial_real):
+    # the beam-seas cell capsizes (2°) inside a 5-step chunk: the engine replays that chunk step
+    # by step, so its time to capsize and statistics are the step-by-step run's
+    cfg, res = serial_real
+    following, beam = res.records
+    assert beam["engine"] == "compiled" and beam["batch_size"] == 1
+    assert cfg.record_every == 5 and beam["capsized"]
+    cells = cfg.cells()
+    for cell, rec in zip(cells, (following, beam), strict=True):
+        ref = cm.run_cell(cfg, cell, cfg.capsize_angle_deg, engine="simulator")
+        assert ref["engine"] == "simulator"
+        _assert_same_outcome(ref, rec)
+
+
+def test_seeds_in_one_batch_equal_seeds_alone():
+    # determinism: a cell's result does not depend on the cells it runs with (3 seeds of beam
+    # seas capsizing at different steps: three replays in one batch)
+    cfg = _tiny_config(
+        headings_deg=(90.0,), froude_numbers=(0.2,), seeds=(0, 1, 2), duration=24.0,
+        capsize_angle_deg=2.0,
+    )  # fmt: skip
+    together = cm.run_cells(cfg, cfg.cells(), 2.0)
+    assert {r["batch_size"] for r in together} == {3}
+    times = [r["time_to_capsize"] for r in together]
+    assert all(r["capsized"] for r in together) and len(set(times)) == 3
+    skip = ("cpu_s", "batch_size")
+    for cell, rec in zip(cfg.cells(), together, strict=True):
+        alone = cm.run_cell(cfg, cell, 2.0)
+        assert {k: v for k, v in alone.items() if k not in skip} == {
+            k: v for k, v in rec.items() if k not in skip
+        }
+
+
+@pytest.mark.parametrize("every", [1, 5])
+def test_engine_divergence_matches_simulator(every):
+    # a |ν| limit just above U makes the run "diverge" after a few seconds: both paths stop at
+    # the same step, keep the last valid state and report its time + Δt
+    from ship_gym.engine.ship import build_simulator
+
+    cfg = _tiny_config(headings_deg=(90.0,), froude_numbers=(0.2,), duration=30.0)
+    cell = cfg.cells()[0]
+    setup, sea, beta, rng = cm.cell_setup(cfg, cell)
+    ref_sim = build_simulator(setup, sea, wave_heading=beta, rng=rng)
+    eng_sim = cm.build_cells_simulator(cfg, [cell])
+    ref_sim.max_abs_velocity = eng_sim.max_abs_velocity = setup.speed + 1e-3
+    angle = math.radians(60.0)
+    ref, ref_series = cm.simulate_until_capsize(ref_sim, 30.0, angle, record_every=every)
+    out, series = cm.simulate_until_capsize(eng_sim, 30.0, angle, record_every=every)
+    assert ref.reason == "diverged" and 0.0 < ref.time_to_capsize < 30.0
+    _assert_same_outcome(dataclasses.asdict(ref), dataclasses.asdict(out))
+    np.testing.assert_array_equal(series["t"], ref_series["t"])
+    np.testing.assert_allclose(series["eta"], ref_series["eta"], rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(series["rudder"], ref_series["rudder"], rtol=1e-9, atol=1e-12)
+    assert eng_sim.diverged[0] and 0 in eng_sim.divergence_messages
+
+
+def test_engine_choice_and_fallback():
+    assert cm.engine_supports("state_space", "holloway") and cm.engine_supports("2b", "rk4")
+    assert not cm.engine_supports("convolution", "rk4") and not cm.engine_supports("none", "abm")
+    assert cm.use_engine("auto", "2a", "rk4") and not cm.use_engine("simulator", "2a", "rk4")
+    assert not cm.use_engine("auto", "convolution", "rk4")  # falls back to the Simulator
+    with pytest.raises(NotImplementedError, match="convolution"):
+        cm.use_engine("engine", "convolution", "rk4")
+    with pytest.raises(ValueError, match="engine must be"):
+        cm.use_engine("fast", "2a", "rk4")
+    cfg = _tiny_config(headings_deg=(90.0,), froude_numbers=(0.2,), seeds=(0, 1))
+    with pytest.raises(ValueError, match="share sea, heading and Froude"):
+        cm.build_cells_simulator(_tiny_config(), _tiny_config().cells()[:2])
+    sim = cm.build_cells_simulator(cfg, cfg.cells())
+    sim.advance(1)
+    with pytest.raises(ValueError, match="reset state"):
+        cm.simulate_ships_until_capsize(sim, 1.0, 1.0)
+    with pytest.raises(ValueError, match="one ship"):
+        cm.simulate_until_capsize(cm.build_cells_simulator(cfg, cfg.cells()), 1.0, 1.0)
+
+
+def test_numpy_backend_steps_singly_and_agrees():
+    # the engine's numpy backend is not bit-identical across sets of running ships, so it is
+    # advanced one step per call (no replay); it agrees with the compiled one to rounding
+    cfg = _tiny_config(
+        headings_deg=(90.0,), froude_numbers=(0.2,), seeds=(0, 1), duration=24.0,
+        capsize_angle_deg=2.0,
+    )  # fmt: skip
+    out = {}
+    for backend in ("numpy", "compiled"):
+        sim = cm.build_cells_simulator(cfg, cfg.cells(), backend=backend)
+        out[backend] = cm.simulate_ships_until_capsize(sim, 24.0, math.radians(2.0), record_every=5)
+        assert sim.compiled == (backend == "compiled")
+    for (a, _), (b, _) in zip(out["compiled"], out["numpy"], strict=True):
+        assert a.reason == "roll"
+        _assert_same_outcome(dataclasses.asdict(a), dataclasses.asdict(b))

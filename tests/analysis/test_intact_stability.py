@@ -110,3 +110,27 @@ def test_simulator_reduced_gm_following_seas_grows():
     sim = ist.simulate_parametric_roll(check, duration=400.0)
     assert sim.grows and sim.late_amplitude_deg > 5 * sim.initial_heel_deg
     assert not sim.capsized
+
+
+def test_dead_ship_engine_equals_simulator():
+    # two seeds as one engine batch vs one Simulator each: same outcomes to rounding
+    kw = dict(hs=4.0, tp=12.0, seeds=(0, 1), duration=10.0, dt=0.5)
+    ref = ist.dead_ship(engine="simulator", **kw)
+    res = ist.dead_ship(**kw)
+    for a, b in zip(ref.outcomes, res.outcomes, strict=True):
+        assert a["seed"] == b["seed"] and a["capsized"] == b["capsized"]
+        assert a["reason"] == b["reason"] and a["time_to_capsize"] == b["time_to_capsize"]
+        for k in ("max_abs_roll_deg", "rms_roll_deg", "max_abs_pitch_deg", "mean_speed"):
+            assert b[k] == pytest.approx(a[k], rel=1e-9, abs=1e-12), k
+
+
+def test_parametric_roll_engine_equals_simulator():
+    # surge held, 2° initial heel, 40 s: the engine's roll history is the Simulator's
+    check = ist.parametric_roll_check(hull_overrides={"kg": 10.1}, heading_deg=0.0)
+    ref = ist.simulate_parametric_roll(check, duration=40.0, dt=0.2, engine="simulator")
+    res = ist.simulate_parametric_roll(check, duration=40.0, dt=0.2)
+    np.testing.assert_array_equal(res.t, ref.t)
+    np.testing.assert_allclose(res.roll, ref.roll, rtol=0, atol=1e-9 * np.abs(ref.roll).max())
+    assert res.roll[0] == pytest.approx(np.radians(2.0), rel=1e-12)
+    assert res.max_abs_roll_deg == pytest.approx(ref.max_abs_roll_deg, rel=1e-9)
+    assert res.capsized == ref.capsized and res.grows == ref.grows

@@ -111,3 +111,27 @@ def test_memory_model_following_seas_fn02_no_capsize():
     assert res.t[-1] == pytest.approx(720.0)
     assert res.max_abs_roll_deg < 5.0
     assert res.max_heading_deviation_deg < 5.0
+
+
+def test_engine_scenario_equals_simulator():
+    # case 2a on the engine (one-ship BatchSimulator) vs the single-ship Simulator, 20 s: same
+    # outcome, time histories to rounding (the paths agree to ≈ 1e-12)
+    sc = mt.Scenario(0.3, 30.0, "2a", duration=20.0)
+    ref = mt.run_scenario(sc, engine="simulator")
+    res = mt.run_scenario(sc)
+    assert ref.engine == "simulator" and res.engine == "compiled"
+    assert res.capsized == ref.capsized and res.reason == ref.reason
+    np.testing.assert_array_equal(res.t, ref.t)
+    for name in ("roll", "pitch", "yaw", "rudder", "u"):
+        a, b = getattr(ref, name), getattr(res, name)
+        np.testing.assert_allclose(b, a, rtol=0, atol=1e-9 * max(np.abs(a).max(), 1e-6))
+    assert res.max_abs_roll_deg == pytest.approx(ref.max_abs_roll_deg, rel=1e-9)
+    assert res.rms_roll_deg == pytest.approx(ref.rms_roll_deg, rel=1e-9)
+    assert res.row()["engine"] == "compiled"
+
+
+def test_convolution_scenario_falls_back_to_the_simulator():
+    sc = mt.Scenario(0.3, 30.0, "convolution", duration=0.5)
+    assert mt.run_scenario(sc).engine == "simulator"
+    with pytest.raises(NotImplementedError):
+        mt.run_scenario(sc, engine="engine")
