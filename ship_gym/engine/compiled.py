@@ -1020,6 +1020,11 @@ class CompiledShip:
             raise NotImplementedError(f"no compiled version: {sim._compiled_error}")
 
     @property
+    def initial_eta(self) -> NDArray:
+        """(6,) default initial η of :meth:`reset` (the free-floating equilibrium)."""
+        return self.sim.initial_eta
+
+    @property
     def max_abs_velocity(self) -> float:
         """|ν| above which the ship is declared diverged [m/s, rad/s] (the engine's)."""
         return self.sim.max_abs_velocity
