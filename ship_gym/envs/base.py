@@ -22,7 +22,8 @@ Rules shared by every environment (DESIGN.md §4):
   ``info["reward_<term>"]``; the Safe-RL cost is ``info["cost"]``; ``info["time"]`` is the
   episode time [s];
 * observation spaces have finite bounds (the checkers of Gymnasium and stable-baselines3 warn on
-  infinite ones); the wrappers clip observations to them as a last guard, so a task documents
+  infinite ones); the wrappers clip observations to them as a last guard (a task whose
+  :attr:`BatchedTask.observations_bounded` is true clips them itself), so a task documents
   bounds its physical values stay inside in normal operation;
 * capsize is ``terminated``; the time limit is ``truncated`` (``TimeLimit`` for the single env,
   the vector env's own step counter); the single env never resets itself;
@@ -40,17 +41,21 @@ stable-baselines3 adapter :mod:`ship_gym.envs.sb3` needs). Partial resets throug
 from __future__ import annotations
 
 import abc
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
 
 import gymnasium
+import numba
 import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 from numpy.typing import ArrayLike, NDArray
+
+from ship_gym.envs._kernels import clip_scalar_bound
 
 if TYPE_CHECKING:
     from ship_gym.envs.rendering import HumanViewer, RenderSnapshot
@@ -83,7 +88,7 @@ class TaskStep:
 
     def reward(self) -> NDArray:
         """Σ of the weighted terms, (N,) float64, summed in the terms' order."""
-        total = np.zeros_like(np.asarray(self.cost, dtype=np.float64))
+        total = np.zeros(np.asarray(self.cost).shape)
         for value in self.reward_terms.values():
             total = total + np.asarray(value, dtype=np.float64)
         return total
@@ -103,6 +108,9 @@ class BatchedTask(abc.ABC):
     observation_names: tuple[str, ...]
     action_names: tuple[str, ...]
     control_dt: float
+    observations_bounded: ClassVar[bool] = False
+    """True if :meth:`observations` returns a new float32 array already clipped to the
+    bounds of :attr:`observation_space` (the wrappers then skip their clip)."""
 
     def __init__(self, num_envs: int) -> None:
         if isinstance(num_envs, bool) or not isinstance(num_envs, int | np.integer):
@@ -156,17 +164,32 @@ def validate_actions(actions: ArrayLike, shape: tuple[int, ...]) -> NDArray:
     """
     a = np.asarray(actions, dtype=np.float64)
     if a.shape != shape:
-        if a.size == int(np.prod(shape)) and a.ndim <= len(shape):
+        if a.size == math.prod(shape) and a.ndim <= len(shape):
             a = a.reshape(shape)
         else:
             raise ValueError(f"action must have shape {shape}, got shape {a.shape}: {a!r}")
-    if not np.all(np.isfinite(a)):
+    out = np.empty(shape)
+    if not _clip_unit(a.reshape(-1), out.reshape(-1)):
         raise ValueError(f"action must be finite (Box(-1, 1)), got {a!r}")
-    return np.clip(a, -1.0, 1.0)
+    return out
 
 
-def _bounded(obs: NDArray, space: spaces.Box) -> NDArray[np.float32]:
-    """Observations as float32 clipped to the space's bounds (broadcast over episodes)."""
+@numba.njit(cache=True, nogil=True)
+def _clip_unit(a: NDArray, out: NDArray) -> bool:  # pragma: no cover - compiled
+    """out = np.clip(a, -1, 1) (1-D, bit for bit); False if an entry is not finite."""
+    for i in range(a.shape[0]):
+        v = a[i]
+        if not math.isfinite(v):
+            return False
+        out[i] = clip_scalar_bound(v, -1.0, 1.0)
+    return True
+
+
+def _bounded(obs: NDArray, space: spaces.Box, task: BatchedTask) -> NDArray[np.float32]:
+    """Observations as float32 clipped to the space's bounds (broadcast over episodes); as
+    they are from a task whose :meth:`BatchedTask.observations` already does that."""
+    if task.observations_bounded:
+        return obs
     return np.clip(obs, space.low, space.high).astype(np.float32, copy=False)
 
 
@@ -257,7 +280,7 @@ class TaskEnv(_TaskView, gymnasium.Env):
         info["time"] = 0.0
         if self.render_mode == "human":
             self.render()
-        return _bounded(self.task.observations()[0], self.observation_space), info
+        return _bounded(self.task.observations()[0], self.observation_space, self.task), info
 
     def step(
         self, action: ArrayLike
@@ -274,7 +297,7 @@ class TaskEnv(_TaskView, gymnasium.Env):
         if self.render_mode == "human":
             self.render()
         return (
-            _bounded(self.task.observations()[0], self.observation_space),
+            _bounded(self.task.observations()[0], self.observation_space, self.task),
             float(result.reward()[0]),
             bool(result.terminated[0]),
             False,
@@ -293,6 +316,8 @@ class TaskEnv(_TaskView, gymnasium.Env):
 
 
 def _item(values: ArrayLike, i: int) -> Any:
+    if type(values) is np.ndarray and values.ndim == 1:
+        return values.item(i)  # what values[i].item() gives, without the NumPy scalar
     v = np.asarray(values)[i]
     return v.item() if isinstance(v, np.generic) else v
 
@@ -367,7 +392,7 @@ class TaskVectorEnv(_TaskView, VectorEnv):
         self._has_reset = False
 
     def _observations(self) -> NDArray[np.float32]:
-        return _bounded(self.task.observations(), self.single_observation_space)
+        return _bounded(self.task.observations(), self.single_observation_space, self.task)
 
     def _seed(self, seed: int | Sequence[int | None] | None, ids: NDArray[np.int64]) -> None:
         if seed is None:
@@ -434,27 +459,33 @@ class TaskVectorEnv(_TaskView, VectorEnv):
         a = validate_actions(actions, (self.num_envs, *self.single_action_space.shape))
         result = self.task.step(a)
         stepped = ~self._pending_reset
-        self._steps[stepped] += 1
+        self._steps += stepped  # +1 where stepped
         reward = result.reward()
         terminated = np.asarray(result.terminated, dtype=bool).copy()
         truncated = np.zeros(self.num_envs, dtype=bool)
         if self.max_episode_steps is not None:
             truncated = (self._steps >= self.max_episode_steps) & ~terminated
 
+        # the Gymnasium vector-info layout (_put): infos[key] and its own copy of the mask
         infos: dict[str, Any] = {}
         for key, value in result.reward_terms.items():
-            _put(infos, f"reward_{key}", np.asarray(value, dtype=np.float64), stepped)
-        _put(infos, "cost", np.asarray(result.cost, dtype=np.float64), stepped)
+            infos[f"reward_{key}"] = np.asarray(value, dtype=np.float64)
+            infos[f"_reward_{key}"] = stepped.copy()
+        infos["cost"] = np.asarray(result.cost, dtype=np.float64)
+        infos["_cost"] = stepped.copy()
         for key, value in result.info.items():
-            _put(infos, key, np.asarray(value), stepped)
-        _put(infos, "time", self._steps * self.task.control_dt, stepped)
+            infos[key] = np.asarray(value)
+            infos[f"_{key}"] = stepped.copy()
+        infos["time"] = self._steps * self.task.control_dt
+        infos["_time"] = stepped.copy()
 
         if self.autoreset_mode == AutoresetMode.NEXT_STEP:
-            ids = np.flatnonzero(self._pending_reset).astype(np.int64)
-            self._reset_ids(ids, None)
-            reward[ids] = 0.0
-            terminated[ids] = False
-            truncated[ids] = False
+            if self._pending_reset.any():
+                ids = np.flatnonzero(self._pending_reset).astype(np.int64)
+                self._reset_ids(ids, None)
+                reward[ids] = 0.0
+                terminated[ids] = False
+                truncated[ids] = False
             obs = self._observations()
             self._pending_reset = terminated | truncated
         else:

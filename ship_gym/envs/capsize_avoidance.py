@@ -14,10 +14,12 @@ import math
 from collections.abc import Sequence
 from typing import Literal
 
+import numba
 import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.conventions import GRAVITY
+from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.ship_task import (
@@ -31,6 +33,7 @@ from ship_gym.envs.ship_task import (
     env_docstring,
     ship_kwargs,
     vector_env_docstring,
+    write_heading_observations,
 )
 from ship_gym.typing import Precision, RowIntegratorName
 
@@ -48,8 +51,35 @@ Matusiak ran 720 s)."""
 S175_LPP = 175.0  # [m]
 
 
-def _wrap(angle: NDArray) -> NDArray:
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+_TWO_PI = 2.0 * math.pi
+
+
+@numba.njit(cache=True, nogil=True)
+def _along_course_kernel(eta, origin, cos_c, sin_c, weight, scale, out):  # pragma: no cover
+    """out = weight · ((x − x₀) cos c + (y − y₀) sin c) / scale (x − 0.0 is x: with a zero
+    origin and weight = scale = 1 it is the distance of O along the course, bit for bit)."""
+    for i in range(eta.shape[0]):
+        along = (eta[i, 0] - origin[i, 0]) * cos_c + (eta[i, 1] - origin[i, 1]) * sin_c
+        out[i] = weight * along / scale
+
+
+@numba.njit(cache=True, nogil=True)
+def _apply_actions_kernel(
+    actions, heading_rate, course, max_deviation, lo, hi, nominal, max_change,
+    setpoint, heading_command, shaft_target, shaft_speed,
+):  # fmt: skip  # pragma: no cover - compiled
+    """Per episode: ψ_ref ← course + clip(wrap(ψ_ref + a₀ · rate − course), ±max deviation);
+    target shaft speed ← (lo + (a₁ + 1)/2 · (hi − lo)) · nominal; shaft speed ← the target
+    clipped to ± ``max_change`` of the current one (the NumPy expressions' operations)."""
+    for i in range(actions.shape[0]):
+        dev = (setpoint[i] + actions[i, 0] * heading_rate - course + math.pi) % _TWO_PI - math.pi
+        dev = clip_scalar_bound(dev, -max_deviation, max_deviation)
+        setpoint[i] = course + dev
+        heading_command[i] = setpoint[i]
+        fraction = lo + 0.5 * (actions[i, 1] + 1.0) * (hi - lo)
+        shaft_target[i] = fraction * nominal
+        n = shaft_speed[i]
+        shaft_speed[i] = clip_array_bound(shaft_target[i], n - max_change, n + max_change)
 
 
 class CapsizeAvoidanceTask(S175Task):
@@ -141,6 +171,7 @@ class CapsizeAvoidanceTask(S175Task):
         )
         self.shaft_target = self.commands["shaft_speed"].copy()
         self.voyage_course = 0.0  # [rad], the initial heading (north)
+        self._origin = np.zeros((self.num_envs, 2))
 
     # ------------------------------------------------------------------ hooks
     def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
@@ -148,40 +179,43 @@ class CapsizeAvoidanceTask(S175Task):
         return {}
 
     def _apply_actions(self, actions: NDArray) -> None:
-        dev = _wrap(self.heading_setpoint + actions[:, 0] * self.heading_rate - self.voyage_course)
-        np.clip(dev, -self.max_course_deviation, self.max_course_deviation, out=dev)
-        self.heading_setpoint[:] = self.voyage_course + dev
-        self.commands["heading"][:] = self.heading_setpoint
         lo, hi = self.shaft_fraction_range
-        fraction = lo + 0.5 * (actions[:, 1] + 1.0) * (hi - lo)
-        self.shaft_target[:] = fraction * self._nominal_shaft_speed
-        step = self.shaft_rate * self._nominal_shaft_speed * self.control_dt
-        n = self.commands["shaft_speed"]
-        np.clip(self.shaft_target, n - step, n + step, out=n)
-
-    def _extra_observations(self) -> NDArray:
-        return np.column_stack(
-            [
-                _wrap(self.sim.eta[:, 5] - self.voyage_course),
-                _wrap(self.heading_setpoint - self.voyage_course),
-                self.shaft_target,
-            ]
+        _apply_actions_kernel(
+            actions,
+            self.heading_rate,
+            self.voyage_course,
+            self.max_course_deviation,
+            lo,
+            hi,
+            self._nominal_shaft_speed,
+            self.shaft_rate * self._nominal_shaft_speed * self.control_dt,
+            self.heading_setpoint,
+            self.commands["heading"],
+            self.shaft_target,
+            self.commands["shaft_speed"],
         )
 
+    def _write_extra_observations(self, out: NDArray) -> None:
+        write_heading_observations(self, self.voyage_course, self.shaft_target, out)
+
+    def _along_course(self, origin: NDArray, weight: float, scale: float) -> NDArray:
+        """weight · (distance of O from ``origin`` along the voyage course) / scale, (N,)."""
+        out = np.empty(self.num_envs)
+        c = self.voyage_course
+        _along_course_kernel(self.sim.eta, origin, math.cos(c), math.sin(c), weight, scale, out)
+        return out
+
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
-        d = self.sim.eta[:, :2] - stats.position_before
-        along = d[:, 0] * math.cos(self.voyage_course) + d[:, 1] * math.sin(self.voyage_course)
         scale = self.setup.speed * self.control_dt
         return {
-            "progress": self.progress_weight * along / scale,
+            "progress": self._along_course(stats.position_before, self.progress_weight, scale),
             "dangerous_roll": -self.danger_weight * stats.danger_fraction,
         }
 
     def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
         return {
-            "heading_error_deg": np.degrees(self.heading_error()),
-            "distance_along_voyage_m": self.sim.eta[:, 0] * math.cos(self.voyage_course)
-            + self.sim.eta[:, 1] * math.sin(self.voyage_course),
+            "heading_error_deg": np.degrees(self._current_heading_error()),
+            "distance_along_voyage_m": self._along_course(self._origin, 1.0, 1.0),
         }
 
     def _action_labels(self, i: int) -> dict[str, float]:

@@ -89,6 +89,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -523,6 +524,60 @@ class ComfortSample:
     msdv: NDArray
 
 
+@numba.njit(cache=True, nogil=True)
+def _comfort_kernel(
+    nu, nu_prev, dt, point, g, sin_theta, cos_theta, sin_phi, cos_phi, sos, state, dose_squared,
+    dose_dt, lateral_alpha, lateral_ms, vertical_alpha, vertical_ms,
+    lateral, vertical, weighted, lateral_rms, vertical_rms, msdv,
+):  # fmt: skip  # pragma: no cover - compiled
+    """One :meth:`PassengerComfort.update` of N episodes: eq. (1)–(3), the dose and the RMS.
+
+    The operations of :func:`specific_force`, :func:`vertical_acceleration`,
+    :class:`RunningWeighting`, :class:`RunningDose` and :class:`ExponentialRMS` in their order
+    (bit for bit the same results); ``nu_prev`` and the filter, dose and RMS states are updated
+    in place, the sample goes to the last six arrays.
+    """
+    rx, ry, rz = point[0], point[1], point[2]
+    for i in range(nu.shape[0]):
+        u, v, w, p, q, r = nu[i, 0], nu[i, 1], nu[i, 2], nu[i, 3], nu[i, 4], nu[i, 5]
+        d0 = (u - nu_prev[i, 0]) / dt
+        d1 = (v - nu_prev[i, 1]) / dt
+        d2 = (w - nu_prev[i, 2]) / dt
+        d3 = (p - nu_prev[i, 3]) / dt
+        d4 = (q - nu_prev[i, 4]) / dt
+        d5 = (r - nu_prev[i, 5]) / dt
+        for k in range(6):
+            nu_prev[i, k] = nu[i, k]
+        # eq. (1): a = v̇ + ω × v + ω̇ × r + ω × (ω × r)
+        wr0 = q * rz - r * ry
+        wr1 = r * rx - p * rz
+        wr2 = p * ry - q * rx
+        a0 = d0 + (q * w - r * v) + (d4 * rz - d5 * ry) + (q * wr2 - r * wr1)
+        a1 = d1 + (r * u - p * w) + (d5 * rx - d3 * rz) + (r * wr0 - p * wr2)
+        a2 = d2 + (p * v - q * u) + (d3 * ry - d4 * rx) + (p * wr1 - q * wr0)
+        # eq. (2), lateral: f_y = a_y − g cos θ sin φ; vertical: (R a)_z
+        st, ct, sp, cp = sin_theta[i], cos_theta[i], sin_phi[i], cos_phi[i]
+        f1 = a1 - g * (ct * sp)
+        vert = -st * a0 + ct * sp * a1 + ct * cp * a2
+        # eq. (3): the cascade of biquads
+        y = vert
+        for k in range(sos.shape[0]):
+            b0, b1, b2, a1k, a2k = sos[k, 0], sos[k, 1], sos[k, 2], sos[k, 4], sos[k, 5]
+            out = b0 * y + state[k, 0, i]
+            state[k, 0, i] = b1 * y - a1k * out + state[k, 1, i]
+            state[k, 1, i] = b2 * y - a2k * out
+            y = out
+        dose_squared[i] += y * y * dose_dt
+        lateral_ms[i] += lateral_alpha * (f1 * f1 - lateral_ms[i])
+        vertical_ms[i] += vertical_alpha * (vert * vert - vertical_ms[i])
+        lateral[i] = f1
+        vertical[i] = vert
+        weighted[i] = y
+        lateral_rms[i] = math.sqrt(lateral_ms[i])
+        vertical_rms[i] = math.sqrt(vertical_ms[i])
+        msdv[i] = math.sqrt(dose_squared[i])
+
+
 class PassengerComfort:
     """Per-episode comfort bookkeeping at one hull point, sampled once per control step.
 
@@ -576,6 +631,57 @@ class PassengerComfort:
 
     def update(self, eta: NDArray, nu: NDArray) -> ComfortSample:
         """Take the states at the end of a control step; returns the (N,) comfort sample."""
+        prev = self._nu_prev
+        if not (
+            type(eta) is np.ndarray
+            and type(nu) is np.ndarray
+            and eta.dtype == np.float64
+            and nu.dtype == np.float64
+            and eta.shape == nu.shape == prev.shape
+        ):
+            return self._update_numpy(eta, nu)
+        n = prev.shape[0]
+        lateral, vertical, weighted = np.empty(n), np.empty(n), np.empty(n)
+        lateral_rms, vertical_rms, msdv = np.empty(n), np.empty(n), np.empty(n)
+        # the trigonometric functions from NumPy, as in specific_force/vertical_acceleration
+        phi, theta = eta[:, 3], eta[:, 4]
+        _comfort_kernel(
+            nu,
+            prev,
+            self.dt,
+            self.point,
+            self.g,
+            np.sin(theta),
+            np.cos(theta),
+            np.sin(phi),
+            np.cos(phi),
+            self.weighting.sos,
+            self.weighting.state,
+            self.dose.dose_squared,
+            self.dose.dt,
+            self.lateral_rms.alpha,
+            self.lateral_rms.mean_square,
+            self.vertical_rms.alpha,
+            self.vertical_rms.mean_square,
+            lateral,
+            vertical,
+            weighted,
+            lateral_rms,
+            vertical_rms,
+            msdv,
+        )
+        return ComfortSample(
+            lateral=lateral,
+            vertical=vertical,
+            weighted_vertical=weighted,
+            lateral_rms=lateral_rms,
+            vertical_rms=vertical_rms,
+            msdv=msdv,
+        )
+
+    def _update_numpy(self, eta: NDArray, nu: NDArray) -> ComfortSample:
+        """:meth:`update` with the array functions of this module (any input; the kernel's
+        reference)."""
         nu_dot = (nu - self._nu_prev) / self.dt
         self._nu_prev = np.array(nu, dtype=float)
         f = specific_force(eta, nu, nu_dot, self.point, self.g)

@@ -24,10 +24,12 @@ from ship_gym.envs.ship_task import (
     StepStatistics,
     check_positive,
     check_weight,
+    clip_into,
     env_docstring,
     irregular_sea,
     ship_kwargs,
     vector_env_docstring,
+    write_heading_observations,
 )
 from ship_gym.typing import Precision, RowIntegratorName
 
@@ -129,25 +131,15 @@ class CourseKeepingTask(S175Task):
         if self.rudder_mode == "absolute":
             cmd[:] = actions[:, 0] * self.rudder_limit
         else:
-            np.clip(
-                cmd + actions[:, 0] * self.max_rudder_increment,
-                -self.rudder_limit,
-                self.rudder_limit,
-                out=cmd,
-            )
+            step = cmd + actions[:, 0] * self.max_rudder_increment
+            clip_into(step, -self.rudder_limit, self.rudder_limit, cmd)
 
-    def _extra_observations(self) -> NDArray:
-        psi = self.sim.eta[:, 5]
-        return np.column_stack(
-            [
-                (psi + math.pi) % (2.0 * math.pi) - math.pi,
-                (self.heading_setpoint + math.pi) % (2.0 * math.pi) - math.pi,
-                self.commands["rudder_command"],
-            ]
-        )
+    def _write_extra_observations(self, out: NDArray) -> None:
+        # wrap(ψ), wrap(ψ_ref), the rudder command
+        write_heading_observations(self, 0.0, self.commands["rudder_command"], out)
 
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
-        delta = self.rudder_angle()
+        delta = self._rudder.angle  # the servo angle (read only)
         return {
             "heading": self.heading_term(self.heading_weight, self.heading_scale),
             "rudder": -self.rudder_weight * (delta / self.rudder_limit) ** 2,
@@ -155,7 +147,7 @@ class CourseKeepingTask(S175Task):
         }
 
     def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
-        return {"heading_error_deg": np.degrees(self.heading_error())}
+        return {"heading_error_deg": np.degrees(self._current_heading_error())}
 
 
 _ARGUMENTS: dict[str, tuple[str, str]] = {

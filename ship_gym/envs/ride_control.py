@@ -7,7 +7,6 @@ faces are :class:`RideControlEnv` and :class:`RideControlVectorEnv`.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Sequence
 
@@ -102,13 +101,14 @@ class RideControlTask(ComfortShipTask):
     def _apply_actions(self, actions: NDArray) -> None:
         self._apply_surface_actions(actions)
 
-    def _extra_observations(self) -> NDArray:
-        return np.column_stack([self.actuator_angles()[:, 0], self.sample.vertical])
+    def _write_extra_observations(self, out: NDArray) -> None:
+        out[:, 0] = self._actuator_models[0].angle
+        out[:, 1] = self.sample.vertical
 
     def _comfort_reward_terms(
         self, stats: StepStatistics, sample: ComfortSample
     ) -> dict[str, NDArray]:
-        effort = (self.actuator_angles()[:, 0] / self.foil_limit) ** 2
+        effort = (self._actuator_models[0].angle / self.foil_limit) ** 2
         return {
             "vertical": -self.vertical_weight
             * (sample.weighted_vertical / self.vertical_scale) ** 2,
@@ -117,7 +117,7 @@ class RideControlTask(ComfortShipTask):
 
     def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
         return {
-            "t_foil_angle_deg": np.degrees(self.actuator_angles()[:, 0]),
+            "t_foil_angle_deg": np.degrees(self._actuator_models[0].angle),
             "weighted_vertical_acceleration_mps2": self.sample.weighted_vertical.copy(),
             **self._comfort_info(),
         }
@@ -128,7 +128,7 @@ class RideControlTask(ComfortShipTask):
         fraction."""
         out = super().step(actions)
         excess = self.sample.vertical_rms > self.vertical_rms_limit
-        return dataclasses.replace(out, cost=np.where(excess, 1.0, out.cost))
+        return TaskStep(out.reward_terms, np.where(excess, 1.0, out.cost), out.terminated, out.info)
 
 
 _ARGUMENTS: dict[str, tuple[str, str]] = {

@@ -237,16 +237,17 @@ class RollStabilizationTask(ComfortShipTask):
         if self.rudder_roll_stabilization:
             self.commands["rudder_command"][:] = actions[:, 1] * self.rudder_limit
 
-    def _extra_observations(self) -> NDArray:
-        return np.column_stack([self.actuator_angles()[:, 0], self.sample.lateral])
+    def _write_extra_observations(self, out: NDArray) -> None:
+        out[:, 0] = self._actuator_models[0].angle
+        out[:, 1] = self.sample.lateral
 
     def _comfort_reward_terms(
         self, stats: StepStatistics, sample: ComfortSample
     ) -> dict[str, NDArray]:
         p = self.sim.nu[:, 3]
-        effort = (self.actuator_angles()[:, 0] / self.fin_limit) ** 2
+        effort = (self._actuator_models[0].angle / self.fin_limit) ** 2
         if self.rudder_roll_stabilization:
-            effort = effort + (self.rudder_angle() / self.rudder_limit) ** 2
+            effort = effort + (self._rudder.angle / self.rudder_limit) ** 2
         terms = {
             "roll": self.roll_term(stats, self.roll_weight, self.roll_scale),
             "roll_rate": -self.roll_rate_weight * (p / self.roll_rate_scale) ** 2,
@@ -259,8 +260,8 @@ class RollStabilizationTask(ComfortShipTask):
 
     def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
         return {
-            "fin_angle_deg": np.degrees(self.actuator_angles()[:, 0]),
-            "heading_error_deg": np.degrees(self.heading_error()),
+            "fin_angle_deg": np.degrees(self._actuator_models[0].angle),
+            "heading_error_deg": np.degrees(self._current_heading_error()),
             **self._comfort_info(),
         }
 

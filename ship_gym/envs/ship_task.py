@@ -69,6 +69,7 @@ from gymnasium import spaces
 from numpy.typing import NDArray
 
 from ship_gym.conventions import GRAVITY
+from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import BatchedTask, TaskStep
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.typing import Precision, RowIntegratorName
@@ -97,6 +98,7 @@ __all__ = [
     "check_positive",
     "check_range",
     "check_weight",
+    "clip_into",
     "env_docstring",
     "irregular_sea",
     "loading_condition",
@@ -104,6 +106,7 @@ __all__ = [
     "s175_setup",
     "ship_kwargs",
     "vector_env_docstring",
+    "write_heading_observations",
 ]
 
 S175_MESH: tuple[int, int, int, int] = (60, 12, 6, 4)
@@ -446,6 +449,150 @@ class StepStatistics:
 
 
 # =============================================================================================
+# per-step kernels (step bookkeeping, observations, rendering history): the NumPy expressions
+# they replace, operation for operation (the same bits, tests/envs/test_step_equivalence.py);
+# sines and cosines stay NumPy calls, whose implementation may differ from numba's
+# =============================================================================================
+_EMPTY = np.zeros(0)
+_RAD2DEG = 180.0 / math.pi  # np.degrees multiplies by this
+
+
+@numba.njit(cache=True, nogil=True)
+def _step_kernel(
+    max_abs, sum_sq, danger, sim_diverged, capsize_angle, capsized, substeps, episode_steps,
+    heading_setpoint, eta,
+    diverged, newly, capsized_now, mean_square, danger_fraction, heading_error, roll_deg,
+    max_roll_deg, capsized_info, terminated, cost,
+):  # fmt: skip  # pragma: no cover - compiled
+    """The bookkeeping of :meth:`ShipTask.step` after the engine call, episode by episode.
+
+    Updates ``capsized`` (the episodes' flags) and ``episode_steps`` in place; writes the
+    :class:`StepStatistics` arrays, wrap(ψ_ref − ψ), the roll angles in degrees and copies of
+    the capsize flags and of the danger fraction (the arrays the step returns). The operations
+    of the NumPy expressions they replace, so the results are the same to the last bit.
+    """
+    for i in range(max_abs.shape[0]):
+        d = sim_diverged[i]
+        c = (max_abs[i] > capsize_angle[i]) or d
+        diverged[i] = d
+        newly[i] = c and not capsized[i]
+        capsized[i] = capsized[i] or c
+        capsized_now[i] = capsized[i]
+        capsized_info[i] = capsized[i]
+        terminated[i] = capsized[i]
+        mean_square[i] = sum_sq[i] / substeps
+        f = danger[i] / substeps
+        danger_fraction[i] = f
+        cost[i] = f
+        episode_steps[i] += 1
+        heading_error[i] = (heading_setpoint[i] - eta[i, 5] + math.pi) % _TWO_PI - math.pi
+        roll_deg[i] = eta[i, 3] * _RAD2DEG
+        max_roll_deg[i] = max_abs[i] * _RAD2DEG
+
+
+@numba.njit(cache=True, nogil=True)
+def _base_observations_kernel(
+    eta, nu, z_eq, heading_error, cos_beta, sin_beta, rudder, shaft, out
+):  # pragma: no cover - compiled
+    """Columns 0–13 of the clean observations (``_BASE_OBSERVATIONS``, the rudder angle if
+    ``rudder`` is not empty, the shaft speed if ``shaft`` is not empty) into ``out``."""
+    for i in range(eta.shape[0]):
+        out[i, 0] = eta[i, 3]
+        out[i, 1] = eta[i, 4]
+        out[i, 2] = eta[i, 2] - z_eq
+        out[i, 3] = nu[i, 3]
+        out[i, 4] = nu[i, 4]
+        out[i, 5] = nu[i, 2]
+        out[i, 6] = nu[i, 5]
+        out[i, 7] = nu[i, 0]
+        out[i, 8] = nu[i, 1]
+        out[i, 9] = heading_error[i]
+        out[i, 10] = cos_beta[i]
+        out[i, 11] = sin_beta[i]
+        j = 12
+        if rudder.shape[0] > 0:
+            out[i, j] = rudder[i]
+            j += 1
+        if shaft.shape[0] > 0:
+            out[i, j] = shaft[i]
+
+
+@numba.njit(cache=True, nogil=True)
+def _finish_observations_kernel(
+    clean, ids, noisy, noise_rows, draws, noise_std, low, high, out
+):  # pragma: no cover - compiled
+    """out[ids[r]] = float32(clip(nan_to_num(clean[ids[r]] + noise_std · draws[r]))).
+
+    Bit for bit what ``np.clip(np.nan_to_num(x, nan=0, posinf=0, neginf=0), low, high)
+    .astype(np.float32)`` gives (array bounds); the noise is added only to rows with
+    ``noise_rows[r]``.
+    """
+    for r in range(ids.shape[0]):
+        i = ids[r]
+        add = noisy and noise_rows[r]
+        for j in range(clean.shape[1]):
+            v = clean[i, j]
+            if add:
+                v = v + noise_std[j] * draws[r, j]
+            if not math.isfinite(v):
+                v = 0.0
+            out[i, j] = np.float32(clip_array_bound(v, low[j], high[j]))
+
+
+@numba.njit(cache=True, nogil=True)
+def _heading_observations_kernel(psi, setpoint, course, third, out):  # pragma: no cover - compiled
+    """out[:, 0] = wrap(ψ − course), out[:, 1] = wrap(ψ_ref − course) (wrap(x) = (x + π) mod 2π
+    − π, NumPy's remainder), out[:, 2] = third."""
+    for i in range(psi.shape[0]):
+        out[i, 0] = (psi[i] - course + math.pi) % _TWO_PI - math.pi
+        out[i, 1] = (setpoint[i] - course + math.pi) % _TWO_PI - math.pi
+        out[i, 2] = third[i]
+
+
+def write_heading_observations(task: ShipTask, course: float, third: NDArray, out: NDArray) -> None:
+    """The task observations ``[wrap(ψ − course), wrap(ψ_ref − course), third]`` into the
+    (N, 3) ``out`` (course-keeping and capsize-avoidance observations; ψ − 0.0 is ψ exactly)."""
+    _heading_observations_kernel(
+        task.sim.eta[:, 5], task.heading_setpoint, float(course), third, out
+    )
+
+
+@numba.njit(cache=True, nogil=True)
+def _clip_scalar_kernel(x, low, high, out):  # pragma: no cover - compiled
+    for i in range(x.shape[0]):
+        out[i] = clip_scalar_bound(x[i], low, high)
+
+
+@numba.njit(cache=True, nogil=True)
+def _clip_array_kernel(x, low, high, out):  # pragma: no cover - compiled
+    for i in range(x.shape[0]):
+        out[i] = clip_array_bound(x[i], low[i], high[i])
+
+
+def clip_into(values: NDArray, low: float | NDArray, high: float | NDArray, out: NDArray) -> None:
+    """``np.clip(values, low, high, out=out)`` for (N,) float64 arrays, bit for bit, without
+    NumPy's per-call overhead; ``low`` and ``high`` both floats or both (N,) arrays."""
+    if isinstance(low, float | int) and isinstance(high, float | int):
+        _clip_scalar_kernel(values, float(low), float(high), out)
+    else:
+        _clip_array_kernel(values, low, high, out)
+
+
+@numba.njit(cache=True, nogil=True)
+def _history_kernel(ids, steps, t, eta, z_eq, hist_t, hist):  # pragma: no cover - compiled
+    """One sample (t, φ, θ, heave, ψ) of episodes ``ids`` into the ring buffers, at column
+    ``steps % h``."""
+    h = hist_t.shape[1]
+    for i in ids:
+        col = steps[i] % h
+        hist_t[i, col] = t[i]
+        hist[i, 0, col] = eta[i, 3]
+        hist[i, 1, col] = eta[i, 4]
+        hist[i, 2, col] = eta[i, 2] - z_eq
+        hist[i, 3, col] = eta[i, 5]
+
+
+# =============================================================================================
 # the common task
 # =============================================================================================
 class ShipTask(BatchedTask, abc.ABC):
@@ -453,8 +600,9 @@ class ShipTask(BatchedTask, abc.ABC):
 
     Subclasses call ``super().__init__`` with the setup and options below, then implement
     :meth:`_apply_actions`, :meth:`_reward_terms`, and optionally :meth:`_extra_observations`
-    (with :attr:`extra_observations`), :meth:`_reset_task`, :meth:`_task_info`,
-    :meth:`_action_labels`.
+    or :meth:`_write_extra_observations` (with :attr:`extra_observations`), :meth:`_reset_task`,
+    :meth:`_task_info`, :meth:`_action_labels`. The step computes the heading error once, after
+    the engine call; the hooks read it with :meth:`_current_heading_error`.
 
     Parameters
     ----------
@@ -492,6 +640,7 @@ class ShipTask(BatchedTask, abc.ABC):
     sim: BatchSimulator
     num_threads: int = 1
     """numba threads over the ships in the compiled loop (set by :class:`S175Task`)."""
+    observations_bounded = True  # observations() is a float32 copy, clipped to the bounds
 
     def __init__(
         self,
@@ -596,6 +745,7 @@ class ShipTask(BatchedTask, abc.ABC):
             low.append(-20.0)
             bounds.append(20.0)
         self._n_base = len(names)
+        self._n_extra = len(extra_observations)
         for name, lo, hi in extra_observations:
             names.append(name)
             low.append(float(lo))
@@ -622,6 +772,19 @@ class ShipTask(BatchedTask, abc.ABC):
         self._rngs: list[np.random.Generator | None] = [None] * n
         self._reset_infos: list[dict[str, float]] = [{} for _ in range(n)]
         self._obs = np.zeros((n, len(names)), dtype=np.float32)
+        # per-step work buffers: the clean (float64) observations, the bounds as float64 (what
+        # np.clip of float64 observations compares with), the noise draws
+        self._obs_clean = np.zeros((n, len(names)))
+        j = self._n_base + self._n_extra
+        self._obs_extra = self._obs_clean[:, self._n_base : j]  # views of the buffer
+        self._obs_preview = self._obs_clean[:, j:]
+        self._obs_low64 = self._obs_low.astype(np.float64)
+        self._obs_high64 = self._obs_high.astype(np.float64)
+        self._noise_draws = np.zeros((n, len(names)))
+        self._noise_rows = np.zeros(n, dtype=bool)
+        self._all_ids = np.arange(n, dtype=np.int64)
+        self._custom_extra = type(self)._extra_observations is not ShipTask._extra_observations
+        self._step_heading_error: NDArray | None = None
         self._last_stats: StepStatistics | None = None
         h = int(history_length)
         self._hist_t = np.full((n, h), np.nan)
@@ -663,8 +826,16 @@ class ShipTask(BatchedTask, abc.ABC):
         which :meth:`step` appends)."""
 
     def _extra_observations(self) -> NDArray:
-        """(N, n_extra) task observations (in the order of ``extra_observations``)."""
-        return np.zeros((self.num_envs, 0))
+        """(N, n_extra) task observations (in the order of ``extra_observations``).
+
+        A subclass overrides this or, cheaper, :meth:`_write_extra_observations`."""
+        out = np.zeros((self.num_envs, self._n_extra))
+        self._write_extra_observations(out)
+        return out
+
+    def _write_extra_observations(self, out: NDArray) -> None:
+        """Write the (N, n_extra) task observations into ``out`` (float64, in the order of
+        ``extra_observations``; a view of the observation buffer, so no array is built)."""
 
     def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
         """Draw the task's own initial conditions of episode ``i`` (after the sea, speed and
@@ -743,9 +914,10 @@ class ShipTask(BatchedTask, abc.ABC):
         self.capsized[ids] = False
         self._hist_t[ids] = np.nan
         self._hist[ids] = np.nan
+        self._step_heading_error = None
         self._record_history(ids)
-        obs = self._clean_observations()
-        self._obs[ids] = self._noisy(obs[ids], ids)
+        self._clean_observations()
+        self._finish_observations(ids)
 
     def reset_info(self, ids: NDArray[np.int64]) -> Mapping[str, NDArray]:
         ids = np.asarray(ids, dtype=np.int64).reshape(-1)
@@ -761,52 +933,64 @@ class ShipTask(BatchedTask, abc.ABC):
     # ------------------------------------------------------------------ step
     def step(self, actions: NDArray) -> TaskStep:
         sim = self.sim
-        a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, -1)
-        self._apply_actions(a)
         n = self.num_envs
+        a = np.asarray(actions, dtype=np.float64).reshape(n, -1)
+        self._step_heading_error = None
+        self._apply_actions(a)
         position_before = sim.eta[:, :2].copy()
         # the control step's physics substeps in one engine call (compiled when possible)
         if self.num_threads > 1:
             numba.set_num_threads(min(self.num_threads, numba.config.NUMBA_NUM_THREADS))
         red = sim.advance(self.substeps, self.commands, danger_roll=self.dangerous_roll)
-        max_abs, sum_sq, danger = red.max_abs_roll, red.sum_sq_roll, red.danger_steps
-        diverged = sim.diverged.copy()
-        capsized = (max_abs > self.capsize_angle) | diverged
-        newly = capsized & ~self.capsized
-        self.capsized |= capsized
+        max_abs = red.max_abs_roll
+        # capsize flags, roll statistics, wrap(ψ_ref − ψ) (once per step: the observation, the
+        # reward terms and the info use it) and the returned copies, in one compiled pass
+        empty, flag = np.empty, np.bool_
+        diverged, newly, capsized = empty(n, flag), empty(n, flag), empty(n, flag)
+        capsized_info, terminated = empty(n, flag), empty(n, flag)
+        mean_square, danger_fraction, cost = empty(n), empty(n), empty(n)
+        heading_error, roll_deg, max_roll_deg = empty(n), empty(n), empty(n)
+        _step_kernel(
+            max_abs, red.sum_sq_roll, red.danger_steps, sim.diverged, self.capsize_angle,
+            self.capsized, self.substeps, self.episode_steps, self.heading_setpoint, sim.eta,
+            diverged, newly, capsized, mean_square, danger_fraction, heading_error, roll_deg,
+            max_roll_deg, capsized_info, terminated, cost,
+        )  # fmt: skip
         stats = StepStatistics(
             max_abs_roll=max_abs,
-            mean_square_roll=sum_sq / self.substeps,
-            danger_fraction=danger / self.substeps,
-            capsized=self.capsized.copy(),
+            mean_square_roll=mean_square,
+            danger_fraction=danger_fraction,
+            capsized=capsized,
             diverged=diverged,
             newly_capsized=newly,
             position_before=position_before,
         )
         self._last_stats = stats
-        self.episode_steps += 1
+        self._step_heading_error = heading_error
         terms = self._reward_terms(stats)
-        terms["capsize"] = -self.capsize_penalty * stats.newly_capsized
-        self._record_history(np.arange(n))
-        self._obs = self._noisy(self._clean_observations(), np.arange(n))
+        terms["capsize"] = -self.capsize_penalty * newly
+        self._record_history(self._all_ids)
+        self._clean_observations(heading_error)
+        self._finish_observations(self._all_ids)
         info = {
-            "capsized": stats.capsized.copy(),
+            "capsized": capsized_info,
             "diverged": diverged,
-            "roll_deg": np.degrees(sim.eta[:, 3]),
-            "max_roll_deg": np.degrees(max_abs),
+            "roll_deg": roll_deg,
+            "max_roll_deg": max_roll_deg,
             **self._task_info(stats),
         }
-        return TaskStep(
-            reward_terms=terms,
-            cost=stats.danger_fraction.copy(),
-            terminated=stats.capsized.copy(),
-            info=info,
-        )
+        return TaskStep(reward_terms=terms, cost=cost, terminated=terminated, info=info)
 
     # ------------------------------------------------------------------ observations
     def heading_error(self) -> NDArray:
         """(N,) wrap(ψ_ref − ψ) [rad] in [−π, π)."""
         return (self.heading_setpoint - self.sim.eta[:, 5] + math.pi) % _TWO_PI - math.pi
+
+    def _current_heading_error(self) -> NDArray:
+        """:meth:`heading_error` after the engine call of the step being taken (computed once
+        per step; a fresh computation outside a step)."""
+        he = self._step_heading_error
+        return self.heading_error() if he is None else he
 
     def _preview(self) -> NDArray:
         eta = self.sim.eta
@@ -815,60 +999,65 @@ class ShipTask(BatchedTask, abc.ABC):
         y = eta[:, 1:2] + d * np.sin(eta[:, 5:6])
         return self.sim.elevation(x, y)
 
-    def _clean_observations(self) -> NDArray:
+    def _clean_observations(self, heading_error: NDArray | None = None) -> NDArray:
+        """Fill and return the (N, n_obs) float64 buffer of the noise-free observations."""
         sim = self.sim
-        eta, nu = sim.eta, sim.nu
+        eta = sim.eta
+        out = self._obs_clean
         beta = self.wave_direction - eta[:, 5]
-        cols = [
-            eta[:, 3],
-            eta[:, 4],
-            eta[:, 2] - self._z_eq,
-            nu[:, 3],
-            nu[:, 4],
-            nu[:, 2],
-            nu[:, 5],
-            nu[:, 0],
-            nu[:, 1],
-            self.heading_error(),
-            np.cos(beta),
-            np.sin(beta),
-        ]
-        if self._rudder is not None:
-            cols.append(self._rudder.angle)
-        if "shaft_speed" in self.commands:
-            cols.append(self.commands["shaft_speed"])
-        out = np.empty((self.num_envs, len(self.observation_names)))
-        out[:, : len(cols)] = np.column_stack(cols)
-        extra = self._extra_observations()
-        j = len(cols) + extra.shape[1]
-        out[:, len(cols) : j] = extra
+        if heading_error is None:
+            heading_error = self.heading_error()
+        rudder = self._rudder.angle if self._rudder is not None else _EMPTY
+        shaft = self.commands.get("shaft_speed", _EMPTY)
+        _base_observations_kernel(
+            eta, sim.nu, self._z_eq, heading_error, np.cos(beta), np.sin(beta), rudder, shaft, out
+        )
+        if self._custom_extra:
+            self._obs_extra[:] = self._extra_observations()
+        elif self._n_extra:
+            self._write_extra_observations(self._obs_extra)
         if self.wave_preview_m.size:
-            out[:, j:] = self._preview()
+            self._obs_preview[:] = self._preview()
         return out
 
-    def _noisy(self, obs: NDArray, ids: NDArray[np.int64]) -> NDArray[np.float32]:
+    def _finish_observations(self, ids: NDArray[np.int64]) -> None:
+        """Rows ``ids`` of :attr:`_obs`: the clean observations plus the episodes' sensor noise,
+        non-finite entries zeroed, clipped to the bounds, as float32."""
+        rows = self._noise_rows
         if self.sensor_noise > 0.0:
-            obs = obs.copy()
-            for r, i in enumerate(ids):
-                rng = self._rngs[int(i)]
+            draws = self._noise_draws
+            width = draws.shape[1]
+            for r, i in enumerate(ids.tolist()):
+                rng = self._rngs[i]
+                rows[r] = rng is not None
                 if rng is not None:
-                    obs[r] += self._noise_std * rng.standard_normal(obs.shape[1])
-        obs = np.nan_to_num(obs, nan=0.0, posinf=0.0, neginf=0.0)
-        return np.clip(obs, self._obs_low, self._obs_high).astype(np.float32)
+                    draws[r] = rng.standard_normal(width)
+        _finish_observations_kernel(
+            self._obs_clean,
+            ids,
+            self.sensor_noise > 0.0,
+            rows,
+            self._noise_draws,
+            self._noise_std,
+            self._obs_low64,
+            self._obs_high64,
+            self._obs,
+        )
 
     def observations(self) -> NDArray:
         return self._obs.copy()
 
     # ------------------------------------------------------------------ rendering
     def _record_history(self, ids: NDArray[np.int64]) -> None:
-        h = self._hist_t.shape[1]
-        col = self.episode_steps[ids] % h
-        eta = self.sim.eta[ids]
-        self._hist_t[ids, col] = self.sim.t[ids]
-        self._hist[ids, 0, col] = eta[:, 3]
-        self._hist[ids, 1, col] = eta[:, 4]
-        self._hist[ids, 2, col] = eta[:, 2] - self._z_eq
-        self._hist[ids, 3, col] = eta[:, 5]
+        _history_kernel(
+            np.asarray(ids, dtype=np.int64),
+            self.episode_steps,
+            self.sim.t,
+            self.sim.eta,
+            self._z_eq,
+            self._hist_t,
+            self._hist,
+        )
 
     def snapshot(self, i: int) -> RenderSnapshot:
         from ship_gym.envs.rendering import RenderSnapshot
@@ -1176,7 +1365,7 @@ class S175Task(ShipTask, abc.ABC):
 
     def heading_term(self, weight: float, scale: float) -> NDArray:
         """−weight · (e/scale)², e the wrapped heading error (scale [rad])."""
-        return -weight * (self.heading_error() / scale) ** 2
+        return -weight * (self._current_heading_error() / scale) ** 2
 
 
 # =============================================================================================
