@@ -4,15 +4,19 @@ The single-ship control models (:mod:`ship_gym.forces.propeller`, :mod:`ship_gym
 :mod:`ship_gym.forces.manoeuvring`, :mod:`ship_gym.forces.rudder`, :mod:`ship_gym.forces.fins`
 behind :class:`ship_gym.control.actuators.Actuated`, with the controllers of
 :mod:`ship_gym.control.autopilot` and :mod:`ship_gym.control.stabilisers`) written with a leading
-ship axis. Each class is built from a single-ship model by ``from_model`` (its parameters are read,
-nothing is re-derived), evaluates all rows of a :class:`~ship_gym.engine.batch.BatchContext` in
-one call, and keeps the internal states of the single-ship model as batch states with the same
-layout (servo angle δ first, then the controller's states). Commands are (N,) arrays over all
-ships or scalars (:meth:`BatchContext.rows`).
+ship axis. Each class is built from a single-ship model by ``from_model`` (its
+``kernel_parameters()`` are taken, nothing is re-derived), evaluates all rows of a
+:class:`~ship_gym.forces.base.BatchContext` in one call with the row kernels that live beside
+the physics (:func:`ship_gym.forces.propeller.propeller_force`,
+:func:`ship_gym.forces.manoeuvring.manoeuvring_force`,
+:func:`ship_gym.forces.lifting_surface.surface_group_force`, the servo and control-law kernels of
+:mod:`ship_gym.control`) — the same kernels the compiled loop calls — and keeps the actuators'
+sampled states per ship (:class:`~ship_gym.control.actuators.ActuatorStates`). Commands are (N,)
+arrays over all ships or scalars (:meth:`BatchContext.rows`).
 
-The arithmetic is the single-ship models', statement by statement (compiled loops over rows for
-the lifting surfaces, the propeller and the cross-flow strips), so a batch agrees with the same
-ships under :class:`~ship_gym.engine.batch.PerShipForceModel` or in single-ship
+The single-ship propeller and manoeuvring models evaluate through the same kernels; the surface
+groups' single-ship ``evaluate`` is still numpy per surface (same arithmetic), so a batch agrees
+with the same ships under :class:`~ship_gym.engine.batch.PerShipForceModel` or in single-ship
 :class:`~ship_gym.engine.simulator.Simulator` runs to rounding (tested,
 ``tests/physics/test_batch_control.py``). The equations and their sources are in the modules of
 the single-ship models; this module adds none.
@@ -21,7 +25,7 @@ the single-ship models; this module adds none.
 single-ship model                           batch model
 ==========================================  ==================================================
 CalmWaterResistance                         :class:`BatchResistance` (R_T(|u|) per ship: the
-                                            curve is a Python callable, ≈ 1.4 µs per ship)
+                                            curve; compiled: ``holtrop_total``)
 Propeller                                   :class:`BatchPropeller` (publishes the (n,) thrust
                                             in ``ctx.shared["propeller_thrust"]``)
 HullManoeuvring                             :class:`BatchHullManoeuvring`

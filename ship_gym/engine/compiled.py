@@ -4,7 +4,7 @@
 :class:`~ship_gym.engine.batch.BatchSimulator` and packs their data into records (named tuples
 of arrays: :class:`HullRecord`, :class:`WaveRecord`, :class:`RigidRecord`,
 :class:`RadiationRecord`, :class:`DiffractionRecord`, :class:`PropulsionRecord`,
-:class:`ManoeuvringRecord`, :class:`SurfacesRecord`); :func:`advance_ships` then runs, for
+:class:`ManoeuvringRecord`, :class:`SurfacesRecord`); :meth:`CompiledBackend.advance` then runs, for
 every ship, up to K steps with the commands held, calling the **same** numba kernels the
 models use on rows:
 
