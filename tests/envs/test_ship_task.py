@@ -212,25 +212,27 @@ def test_seeded_rollouts_repeat_and_the_reward_is_the_sum_of_its_terms(case):
     assert not np.array_equal(other.observations, a.observations[:3])
 
 
+@pytest.mark.parametrize("n", [2, 5])
 @pytest.mark.parametrize("case", list(SHIP_ENVS))
-def test_vector_env_episode_i_is_the_single_env_seeded_s_plus_i(case):
+def test_vector_env_episode_i_is_the_single_env_seeded_s_plus_i(case, n):
+    # the compiled engine shares no reduction between ships: bit for bit for every N (v0 on
+    # the numpy path differed by 1e-14 in rewards and drifted 0.014 in CapsizeAvoidance)
     env_case = SHIP_ENVS[case]
-    n, seed, steps = 2, 10, 5
+    seed, steps = 10, 12
     vec = env_case.vector_env(n)
     actions = uniform_actions(vec, steps, seed=1)
     obs_v, info_v = vec.reset(seed=seed)
     steps_v = [vec.step(a) for a in actions]
     for i in range(n):
         single = rollout(env_case.env(), seed + i, actions[:, i])
-        # same sea and the same first state, bit for bit
         np.testing.assert_array_equal(obs_v[i], single.observations[0])
         for key in RESET_INFO_KEYS:
             assert info_v[key][i] == single.reset_info[key]
         for k, (obs, reward, *_rest) in enumerate(steps_v):
-            # same code path; the batch's (N, 6) @ (6, 6) products may round in another order
-            # than N = 1: about one float32 ulp on the observations, 1e-9 on the rewards
-            np.testing.assert_allclose(obs[i], single.observations[k + 1], rtol=1e-6, atol=1e-7)
-            assert reward[i] == pytest.approx(single.rewards[k], rel=1e-9, abs=1e-12)
+            if k >= len(single.rewards):
+                break  # the single episode ended (the vector env autoresets)
+            np.testing.assert_array_equal(obs[i], single.observations[k + 1])
+            assert reward[i] == single.rewards[k]
 
 
 @pytest.mark.parametrize(
