@@ -820,9 +820,11 @@ class CompiledBackend:
                     f"commands[{key!r}] must be a scalar or an (N,) array over the ships; got "
                     f"shape {arr.shape}"
                 )
-            if not np.all(np.isfinite(arr)):
-                raise ValueError(f"commands[{key!r}] must be finite; got {value!r}")
             out[:, j] = arr
+        if not np.isfinite(out).all():  # one check for all; name the offending key
+            j = int(np.flatnonzero(~np.isfinite(out).all(axis=0))[0])
+            key = self._command_keys[j]
+            raise ValueError(f"commands[{key!r}] must be finite; got {sim.commands.get(key)!r}")
         return out
 
     def _records(self) -> tuple:
