@@ -950,9 +950,17 @@ class BatchSimulator:
         k = int(n_steps)
         if k < 1:
             raise ValueError(f"n_steps must be ≥ 1, got {n_steps!r}")
+        previous = self.commands
         if commands is not None:
             self.commands = {**self.commands, **commands}
         backend = self._compiled_backend()
+        cmd = None
+        if backend is not None:
+            try:
+                cmd = backend.command_matrix()
+            except ValueError:
+                self.commands = previous  # a refused command changes nothing
+                raise
         if backend is None:
             max_abs = np.abs(self.eta[:, ROLL])
             sum_sq = np.zeros(self.n_ships)
@@ -970,7 +978,7 @@ class BatchSimulator:
         if ships.size == 0:
             z = np.zeros(self.n_ships)
             return StepReductions(z, z.copy(), np.zeros(self.n_ships, np.int64), z > 0)
-        reductions, done = backend.advance(ships, k, danger_roll)
+        reductions, done = backend.advance(ships, k, danger_roll, cmd)
         self.n_steps += done
         self.n_evaluations += k * self.evaluations_per_step
         if not reductions.diverged.any():

@@ -797,8 +797,14 @@ class CompiledBackend:
             arrays["lag"], arrays["kind"], gains, arrays["ref_col"], *states.values(),
         )  # fmt: skip
 
-    def _command_matrix(self) -> NDArray:
-        """(N, n_cmd) the commands in force (arrays over N or scalars; defaults filled)."""
+    def command_matrix(self) -> NDArray:
+        """(N, n_cmd) the commands in force (arrays over N or scalars; defaults filled).
+
+        Raises
+        ------
+        ValueError
+            For a command of the wrong shape or not finite (naming its key).
+        """
         sim = self.sim
         out = np.empty((sim.n_ships, len(self._command_keys)))
         for j, (key, default) in enumerate(
@@ -887,7 +893,7 @@ class CompiledBackend:
                 self._entry[self.parallel] = overload.entry_point
 
     def advance(
-        self, ships: NDArray, n_steps: int, danger: float
+        self, ships: NDArray, n_steps: int, danger: float, cmd: NDArray | None = None
     ) -> tuple[StepReductions, NDArray]:
         """Up to ``n_steps`` steps of each of ``ships`` with the commands held.
 
@@ -897,7 +903,8 @@ class CompiledBackend:
         sim = self.sim
         n = sim.n_ships
         waves, rigid, diff = self._records()
-        cmd = self._command_matrix()
+        if cmd is None:
+            cmd = self.command_matrix()
         red_max = np.zeros(n)
         red_sum = np.zeros(n)
         red_danger = np.zeros(n, dtype=np.int64)

@@ -141,3 +141,17 @@ def test_the_parallel_loop_equals_the_serial_one_bit_for_bit():
     np.testing.assert_array_equal(parallel.eta, serial.eta)
     np.testing.assert_array_equal(parallel.z, serial.z)
     np.testing.assert_array_equal(reds[1].sum_sq_roll, reds[0].sum_sq_roll)
+
+
+def test_bad_commands_are_refused_before_any_step():
+    setup = ShipSetup(speed=8.0, propulsion=True, manoeuvring=True, rudder="autopilot")
+    sim = build_batch_simulator(setup, _fields(2), backend="compiled")
+    eta = sim.eta.copy()
+    with pytest.raises(ValueError, match="'heading'.*finite"):
+        sim.advance(3, {"heading": np.array([0.1, np.nan])})
+    with pytest.raises(ValueError, match=r"'shaft_speed'.*\(N,\)"):
+        sim.advance(3, {"shaft_speed": np.ones(3), "heading": np.zeros(2)})
+    np.testing.assert_array_equal(sim.eta, eta)
+    assert sim.n_steps.tolist() == [0, 0]
+    sim.advance(2)  # the refused commands were not kept
+    assert sim.n_steps.tolist() == [2, 2]
