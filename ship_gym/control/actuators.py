@@ -214,6 +214,24 @@ class Controller(Protocol):
         ...
 
 
+def law_parameters(controller: Controller | None) -> tuple[int, FloatArray]:
+    """(law index of :func:`control_law`, its four gains) of a controller (None: open loop)."""
+    if controller is None:
+        return NO_CONTROLLER, np.zeros(4)
+    return int(controller.kind), np.asarray(controller.gains(), dtype=float)
+
+
+def actuator_kernel_arguments(
+    kind: int, gains: FloatArray, servo: ServoSpec, states: ActuatorStates
+) -> tuple:
+    """The arguments of :func:`actuator_angle_rows` / :func:`actuator_commit_rows` after the
+    rows' inputs: law, gains, servo limits and lag, and the per-ship state arrays."""
+    return (
+        kind, gains, servo.max_angle, servo.max_rate, servo.lag, states.delta, states.integral,
+        states.t_step, states.eta_step, states.nu_step,
+    )  # fmt: skip
+
+
 class ActuatorStates:
     """Per-ship discrete states of one actuator (rows over ships).
 
@@ -293,8 +311,7 @@ class Actuated(ForceModel):
         self.name = model.name
         self.added_mass = model.added_mass
         self.controller = controller
-        self.kind = NO_CONTROLLER if controller is None else int(controller.kind)
-        self.gains = np.zeros(4) if controller is None else np.asarray(controller.gains(), float)
+        self.kind, self.gains = law_parameters(controller)
         self.states = ActuatorStates(1)
         self._ship = np.zeros(1, dtype=np.int64)
 
@@ -314,11 +331,7 @@ class Actuated(ForceModel):
         return 0.0
 
     def _kernel_args(self) -> tuple:
-        st, sv = self.states, self.servo
-        return (
-            self.kind, self.gains, sv.max_angle, sv.max_rate, sv.lag, st.delta, st.integral,
-            st.t_step, st.eta_step, st.nu_step,
-        )  # fmt: skip
+        return actuator_kernel_arguments(self.kind, self.gains, self.servo, self.states)
 
     def reset(self, t0: float, ctx: ForceContext) -> None:
         """Servo at rest at zero angle; the controller samples the initial state."""

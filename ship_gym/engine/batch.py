@@ -77,7 +77,12 @@ from ship_gym.conventions import ROLL, SURGE
 from ship_gym.engine.batch_control import batch_control_model, trim_batch_shaft_speed
 from ship_gym.engine.rigid_body import healthy_state, rigid_body_terms
 from ship_gym.engine.ship import Sea, ShipSetup, build_force_models
-from ship_gym.engine.simulator import left_hand_side
+from ship_gym.engine.simulator import (
+    SimulationDiverged,
+    SimulationResult,
+    left_hand_side,
+    steps_in,
+)
 from ship_gym.forces.base import (
     BatchContext,
     BatchForceModel,
@@ -106,7 +111,7 @@ from ship_gym.typing import RowIntegratorName
 from ship_gym.waves.wave_field import WaveField, stack_fields
 
 if TYPE_CHECKING:
-    from ship_gym.engine.simulator import SimulationResult
+    from ship_gym.engine.compiled import StepReductions
 
 EngineBackend = Literal["auto", "compiled", "numpy"]
 """``"compiled"``: K steps of all ships in one numba call (:mod:`ship_gym.engine.compiled`);
@@ -896,6 +901,7 @@ class BatchSimulator:
         """Incremented when a ship's sea or loading changes (the compiled records follow)."""
         self.backend: EngineBackend = backend
         self.parallel = bool(parallel)
+        """Spread the ships over numba's threads in the compiled loop (may be changed later)."""
         self._compiled: Any = None
         self._compiled_error: str | None = None
         self.reset()
@@ -913,7 +919,7 @@ class BatchSimulator:
             from ship_gym.engine.compiled import CompiledBackend
 
             try:
-                self._compiled = CompiledBackend(self, parallel=self.parallel)
+                self._compiled = CompiledBackend(self)
             except NotImplementedError as exc:
                 self._compiled_error = str(exc)
         if self._compiled is None and self.backend == "compiled":
@@ -928,7 +934,7 @@ class BatchSimulator:
         commands: Mapping[str, ArrayLike] | None = None,
         *,
         danger_roll: float = math.inf,
-    ) -> Any:
+    ) -> StepReductions:
         """Take ``n_steps`` physics steps with the commands held; return the task reductions.
 
         With the compiled backend (:mod:`ship_gym.engine.compiled`) the K steps of all ships
@@ -954,6 +960,15 @@ class BatchSimulator:
         if commands is not None:
             self.commands = {**self.commands, **commands}
         backend = self._compiled_backend()
+        if backend is not None and not backend.handles_commands():
+            if self.backend == "compiled":
+                keys = sorted(backend.numpy_only_commands & self.commands.keys())
+                self.commands = previous  # a refused command changes nothing
+                raise NotImplementedError(
+                    f"commands {keys} are read by the numpy path only (a rudder without a "
+                    "propeller)"
+                )
+            backend = None
         cmd = None
         if backend is not None:
             try:
@@ -1453,13 +1468,7 @@ class BatchSimulator:
             If the recorded ship diverges (the series up to its last valid state is kept in
             the exception's ``result`` attribute).
         """
-        from ship_gym.engine.simulator import SimulationDiverged, SimulationResult
-
-        n = round(duration / self.dt)
-        if n < 1 or abs(n * self.dt - duration) > 1e-9 * max(1.0, duration):
-            raise ValueError(
-                f"duration {duration} s must be a positive multiple of dt = {self.dt} s"
-            )
+        n = steps_in(duration, self.dt)
         if isinstance(record_every, bool) or not isinstance(record_every, int) or record_every < 1:
             raise ValueError(f"record_every must be an integer ≥ 1, got {record_every!r}")
         s = int(self._as_ships([ship])[0])
@@ -1472,7 +1481,9 @@ class BatchSimulator:
 
         def result() -> SimulationResult:
             t, eta = np.array(rec_t), np.array(rec_eta)
-            return SimulationResult(t, eta, np.array(rec_nu), self._elevation_series(s, t, eta))
+            field = self.wave_fields[s]  # ζ at O from the recorded states, after the run
+            zeta = np.zeros_like(t) if field is None else field.elevation(eta[:, 0], eta[:, 1], t)
+            return SimulationResult(t, eta, np.array(rec_nu), zeta)
 
         bar = None
         if progress:
@@ -1526,19 +1537,6 @@ class BatchSimulator:
             f"no servo-driven force model named {name!r}; the models are "
             f"{[f.name for f in self.forces]}"
         )
-
-    def _elevation_series(self, ship: int, t: NDArray, eta: NDArray) -> NDArray:
-        """ζ [m] at ship ``ship``'s O along a recorded series (times t, states eta), in its sea."""
-        from ship_gym.waves.wave_field import ramp_factor
-
-        seas = self._seas
-        arg = (
-            seas.omega[ship] * t[:, None]
-            + seas.phase[ship]
-            - (seas.kx[ship] * eta[:, :1] + seas.ky[ship] * eta[:, 1:2])
-        )
-        r = ramp_factor(t, seas.ramp_time[ship])
-        return r * (np.cos(arg) @ seas.amplitude[ship])
 
     def elevation_at_ships(self) -> NDArray:
         """(N,) incident-wave elevation at each ship's O [m] (ζ = Re Σⱼ c'ⱼ)."""

@@ -56,6 +56,8 @@ from ship_gym.control.actuators import (
     ServoSpec,
     actuator_angle_rows,
     actuator_commit_rows,
+    actuator_kernel_arguments,
+    law_parameters,
 )
 from ship_gym.conventions import SURGE
 from ship_gym.forces.base import BatchContext, BatchForceModel, ForceModel
@@ -76,7 +78,7 @@ __all__ = [
 ]
 
 _MIN_SPEED = 1e-9  # ship_gym.forces.lifting_surface._MIN_SPEED: no force below this speed [m/s]
-_INFLOW_RUDDER = 0  # Rudder._inflow: wake, slipstream, flow straightening
+_INFLOW_RUDDER = 0  # Rudder.inflow: wake, slipstream, flow straightening
 _INFLOW_RIGID = 1  # _ControlSurfaces.inflow_velocities: rigid-body velocity, axial wake
 _THRUST_NONE, _THRUST_GIVEN, _THRUST_COEFFICIENT = 0, 1, 2
 # LiftingSurface attributes stacked over a group's surfaces, in the kernel's argument order
@@ -92,7 +94,7 @@ _SURFACE_KERNEL_FIELDS = (
     "stall_angle",
     "stall_transition",
     "zero_lift_drag",
-    "_k_induced",
+    "induced_drag_factor",
     "normal_force_coefficient",
 )
 
@@ -288,6 +290,17 @@ class BatchActuatedSurfaces(BatchForceModel):
         Key of the open-loop commanded angle [rad] (default ``key + "_command"``).
     controller : HeadingAutopilot, FinController or RideController, optional
         Feedback law.
+
+    Attributes
+    ----------
+    inflow, wake_fraction, straightening, propeller_geometry, surface_limit
+        The inflow arguments of :func:`~ship_gym.forces.lifting_surface.surface_group_force`
+        (rudder or rigid-body inflow, 1 − w, (γ_v, γ_r), (D_P [m], x_P [m])) and the surfaces'
+        own angle limit [rad] (∞ for the rudder).
+    rudder : Rudder or None
+        The rudder (its thrust sources for the slipstream), None for fins, foil and flaps.
+    geometry : tuple of numpy.ndarray
+        The surfaces' stacked kernel fields (:data:`_SURFACE_KERNEL_FIELDS` order).
     """
 
     n_states = 0
@@ -301,19 +314,19 @@ class BatchActuatedSurfaces(BatchForceModel):
         controller: Any = None,
     ) -> None:
         if isinstance(group, Rudder):
-            self._inflow = _INFLOW_RUDDER
-            self._wake = group.wake_fraction
-            self._gamma = (group.drift_straightening, group.yaw_straightening)
-            self._prop = (group.propeller_diameter, group.propeller_distance)
-            self._rudder = group
-            self._surface_limit = math.inf
+            self.inflow = _INFLOW_RUDDER
+            self.wake_fraction = group.wake_fraction
+            self.straightening = (group.drift_straightening, group.yaw_straightening)
+            self.propeller_geometry = (group.propeller_diameter, group.propeller_distance)
+            self.rudder = group
+            self.surface_limit = math.inf
         elif isinstance(group, RollFins | TFoil | SternFlaps):
-            self._inflow = _INFLOW_RIGID
-            self._wake = group.wake_fraction
-            self._gamma = (1.0, 1.0)
-            self._prop = (1.0, 0.0)
-            self._rudder = None
-            self._surface_limit = group.max_angle
+            self.inflow = _INFLOW_RIGID
+            self.wake_fraction = group.wake_fraction
+            self.straightening = (1.0, 1.0)
+            self.propeller_geometry = (1.0, 0.0)
+            self.rudder = None
+            self.surface_limit = group.max_angle
         else:
             raise NotImplementedError(f"no batch version of surface group {type(group).__name__}")
         if servo is None and controller is not None:
@@ -324,9 +337,8 @@ class BatchActuatedSurfaces(BatchForceModel):
         self.key = key
         self.command_key = command_key or f"{key}_command"
         self.controller = controller
-        self.kind = NO_CONTROLLER if controller is None else int(controller.kind)
-        self.gains = np.zeros(4) if controller is None else np.asarray(controller.gains(), float)
-        self._geometry = tuple(
+        self.kind, self.gains = law_parameters(controller)
+        self.geometry = tuple(
             np.array([getattr(sf, name) for sf in group.surfaces], dtype=float)
             for name in _SURFACE_KERNEL_FIELDS
         )
@@ -370,12 +382,8 @@ class BatchActuatedSurfaces(BatchForceModel):
         return np.zeros(ctx.n)
 
     def _kernel_args(self) -> tuple:
-        st, sv = self.states, self.servo
-        assert sv is not None
-        return (
-            self.kind, self.gains, sv.max_angle, sv.max_rate, sv.lag, st.delta, st.integral,
-            st.t_step, st.eta_step, st.nu_step,
-        )  # fmt: skip
+        assert self.servo is not None
+        return actuator_kernel_arguments(self.kind, self.gains, self.servo, self.states)
 
     def _thrust(self, ctx: BatchContext) -> tuple[int, NDArray]:
         """Rudder._thrust's sources in its order: shared thrust, thrust command, C_Th."""
@@ -385,23 +393,23 @@ class BatchActuatedSurfaces(BatchForceModel):
         given = _command_rows(ctx, "propeller_thrust", None)
         if given is not None:
             return _THRUST_GIVEN, given
-        assert self._rudder is not None
-        c_th = _command_rows(ctx, "propeller_thrust_coefficient", self._rudder.thrust_coefficient)
+        assert self.rudder is not None
+        c_th = _command_rows(ctx, "propeller_thrust_coefficient", self.rudder.thrust_coefficient)
         if c_th is None:
             return _THRUST_NONE, np.zeros(ctx.n)
         return _THRUST_COEFFICIENT, c_th
 
     def surface_force(self, ctx: BatchContext, angle: NDArray) -> NDArray:
         """(n, 6) force and moment about O of the surfaces at applied angles ``angle`` [rad]."""
-        if self._inflow == _INFLOW_RUDDER:
+        if self.inflow == _INFLOW_RUDDER:
             mode, thrust = self._thrust(ctx)
         else:
             mode, thrust = _THRUST_NONE, angle
-            angle = np.minimum(np.maximum(angle, -self._surface_limit), self._surface_limit)
+            angle = np.minimum(np.maximum(angle, -self.surface_limit), self.surface_limit)
         force = np.empty((ctx.n, 6))
         _surfaces_rows(
-            ctx.nu, np.ascontiguousarray(angle, dtype=float), self._inflow, self._wake,
-            *self._gamma, *self._prop, mode, thrust, *self._geometry, force,
+            ctx.nu, np.ascontiguousarray(angle, dtype=float), self.inflow, self.wake_fraction,
+            *self.straightening, *self.propeller_geometry, mode, thrust, *self.geometry, force,
         )  # fmt: skip
         return force
 

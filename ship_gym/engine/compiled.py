@@ -321,7 +321,8 @@ def _evaluate(
         if stale:
             dtab = (
                 diff.table, diff.beta_ext, diff.omega_db, diff.direction[s], diff.omega[s],
-                diff.wavenumber[s], diff.encounter, diff.step, False, diff.work, diff.count,
+                diff.wavenumber[s], diff.encounter, diff.step, False, diff.work[s],
+                diff.count[s : s + 1],
             )  # fmt: skip
             ref2 = np.empty(2)
             refresh_diffraction_cache(psi, rad.speed, dtab, diff.xd[s], diff.dxd[s], ref2)
@@ -598,7 +599,7 @@ class CompiledBackend:
         From :meth:`check` when a model has no compiled version (the message names it).
     """
 
-    def __init__(self, sim: BatchSimulator, *, parallel: bool = False) -> None:
+    def __init__(self, sim: BatchSimulator) -> None:
         from ship_gym.engine.batch import (
             BatchConstantRadiation,
             BatchDiffraction,
@@ -609,7 +610,6 @@ class CompiledBackend:
 
         self.check(sim)
         self.sim = sim
-        self.parallel = bool(parallel)
         n = sim.n_ships
         fk = next(f for f in sim.forces if isinstance(f, BatchFroudeKrylov))
         lay = fk.panels._layout
@@ -643,7 +643,9 @@ class CompiledBackend:
             dxd, psi_ref, u_ref = xd.copy(), np.full(n, np.nan), np.full(n, np.nan)
         self._diff_static = (diff is not None, *tab)
         self._diff_rest = (enc, float(h), float(tol), xd, dxd, psi_ref, u_ref)
-        self._diff_work = (np.zeros((3, n_c, 6), np.complex128), np.zeros(1, np.int64))
+        # work arrays and refresh counters per ship: ships refresh concurrently in the
+        # parallel loop
+        self._diff_work = (np.zeros((n, 3, n_c, 6), np.complex128), np.zeros(n, np.int64))
         visc = next((f for f in sim.forces if isinstance(f, BatchViscousRoll)), None)
         res = next((f for f in sim.forces if isinstance(f, BatchResistance)), None)
         pro = next((f for f in sim.forces if isinstance(f, BatchPropeller)), None)
@@ -670,9 +672,19 @@ class CompiledBackend:
                 False, 0.0, 0.0, 0.0, 0.0, np.zeros(0), np.zeros(0), False, 0.0
             )
         self.surfaces = self._surfaces(sim, pro is not None)
+        # a rudder without a propeller takes its slipstream from these commands on the numpy
+        # path (BatchActuatedSurfaces._thrust); the compiled loop knows only the rudder's C_Th
+        has_rudder = any(
+            isinstance(f, BatchActuatedSurfaces) and f.rudder is not None for f in sim.forces
+        )
+        self.numpy_only_commands: frozenset[str] = frozenset(
+            () if pro is not None or not has_rudder
+            else ("propeller_thrust", "propeller_thrust_coefficient")
+        )  # fmt: skip
+        """Command keys that make a call run on the numpy path (see :meth:`handles_commands`)."""
         self._records_version = -1
         self._records_cache: tuple = ()
-        self._entry: dict[bool, Any] = {}
+        self._entry: dict[Any, Any] = {}
 
     # ------------------------------------------------------------------ set-up
     @staticmethod
@@ -731,13 +743,13 @@ class CompiledBackend:
     def _surfaces(self, sim: BatchSimulator, has_propeller: bool) -> SurfacesRecord:
         groups = [f for f in sim.forces if isinstance(f, BatchActuatedSurfaces)]
         n, g_n = sim.n_ships, len(groups)
-        geo = [np.concatenate([g._geometry[i] for g in groups]) if groups else None
+        geo = [np.concatenate([g.geometry[i] for g in groups]) if groups else None
                for i in range(13)]  # fmt: skip
         shapes = ((0, 3),) * 4 + ((0,),) * 9
         geo = [_c(x) if x is not None else np.zeros(sh) for x, sh in zip(geo, shapes, strict=True)]
         ptr = np.zeros(g_n + 1, dtype=np.int64)
         for i, g in enumerate(groups):
-            ptr[i + 1] = ptr[i] + g._geometry[0].shape[0]
+            ptr[i + 1] = ptr[i] + g.geometry[0].shape[0]
         scal: dict[str, list] = {k: [] for k in (
             "inflow", "wake", "gamma_v", "gamma_r", "prop_d", "prop_x", "thrust_mode", "c_th",
             "surface_limit", "max_angle", "max_rate", "lag", "kind", "gains", "ref_col",
@@ -746,21 +758,21 @@ class CompiledBackend:
         for k in ("eta_step", "nu_step"):
             states[k] = np.zeros((max(g_n, 1), n, 6))
         for i, g in enumerate(groups):
-            scal["inflow"].append(g._inflow)
-            scal["wake"].append(g._wake)
-            scal["gamma_v"].append(g._gamma[0])
-            scal["gamma_r"].append(g._gamma[1])
-            scal["prop_d"].append(g._prop[0])
-            scal["prop_x"].append(g._prop[1])
+            scal["inflow"].append(g.inflow)
+            scal["wake"].append(g.wake_fraction)
+            scal["gamma_v"].append(g.straightening[0])
+            scal["gamma_r"].append(g.straightening[1])
+            scal["prop_d"].append(g.propeller_geometry[0])
+            scal["prop_x"].append(g.propeller_geometry[1])
             mode, c_th = 0, 0.0
-            if g._rudder is not None:
+            if g.rudder is not None:
                 if has_propeller:
                     mode = 1
-                elif g._rudder.thrust_coefficient is not None:
-                    mode, c_th = 2, float(g._rudder.thrust_coefficient)
+                elif g.rudder.thrust_coefficient is not None:
+                    mode, c_th = 2, float(g.rudder.thrust_coefficient)
             scal["thrust_mode"].append(mode)
             scal["c_th"].append(c_th)
-            scal["surface_limit"].append(g._surface_limit)
+            scal["surface_limit"].append(g.surface_limit)
             scal["max_angle"].append(g.servo.max_angle)
             scal["max_rate"].append(g.servo.max_rate)
             scal["lag"].append(g.servo.lag)
@@ -768,7 +780,8 @@ class CompiledBackend:
             scal["gains"].append(g.gains)
             if g.kind == 1:
                 key = g.controller.heading_key
-                scal["ref_col"].append(self._column(key, ("initial_heading", g)))
+                # without a heading command: the heading at each ship's reset
+                scal["ref_col"].append(self._column(key, lambda g=g: g.states.initial_heading))
             elif g.kind == 0:
                 scal["ref_col"].append(self._column(g.command_key, 0.0))
             else:
@@ -797,6 +810,10 @@ class CompiledBackend:
             arrays["lag"], arrays["kind"], gains, arrays["ref_col"], *states.values(),
         )  # fmt: skip
 
+    def handles_commands(self) -> bool:
+        """Whether the compiled loop reads every command in force the way the numpy path does."""
+        return not (self.numpy_only_commands & self.sim.commands.keys())
+
     def command_matrix(self) -> NDArray:
         """(N, n_cmd) the commands in force (arrays over N or scalars; defaults filled).
 
@@ -812,8 +829,8 @@ class CompiledBackend:
         ):
             value = sim.commands.get(key, None)
             if value is None:
-                if isinstance(default, tuple):  # the autopilot's heading at reset
-                    value = default[1].states.initial_heading
+                if callable(default):
+                    value = default()
                 elif default is None:
                     raise ValueError(
                         f"no {key!r} command and no default (e.g. the propeller's shaft speed)"
@@ -873,24 +890,18 @@ class CompiledBackend:
         (≈ 20 µs); the entry point of the specialisation it chose skips that. Should the
         argument types ever change (another array layout), the dispatcher is used again.
         """
-        run = _advance_parallel if self.parallel else _advance_serial
-        entry = self._entry.get(self.parallel)
+        run = _advance_parallel if self.sim.parallel else _advance_serial
+        entry = self._entry.get(run)
         if entry is not None:
             try:
                 entry(*args)
                 return
             except TypeError:
-                self._entry.pop(self.parallel, None)
+                del self._entry[run]
         run(*args)
-        if len(run.signatures) == 1 or self._entry.get(self.parallel) is None:
-            sig = run.signatures[-1] if len(run.signatures) == 1 else None
-            if sig is None:  # several specialisations: pick the one of these arguments
-                from numba import typeof
-
-                sig = tuple(typeof(a) for a in args)
-            overload = run.overloads.get(sig)
-            if overload is not None:
-                self._entry[self.parallel] = overload.entry_point
+        overload = run.overloads.get(tuple(nb.typeof(a) for a in args))
+        if overload is not None:
+            self._entry[run] = overload.entry_point
 
     def advance(
         self, ships: NDArray, n_steps: int, danger: float, cmd: NDArray | None = None
@@ -1070,7 +1081,7 @@ class CompiledShip:
     @property
     def n_refreshes(self) -> int:
         """Diffraction cache refreshes inside the compiled loop since construction."""
-        return int(self.backend._diff_work[1][0])
+        return int(self.backend._diff_work[1].sum())
 
     def reset(self, eta: NDArray | None = None, nu: NDArray | None = None, t0: float = 0.0):
         """Restart at ``t0`` from (η, ν) (defaults: the equilibrium, (U, 0, …, 0))."""

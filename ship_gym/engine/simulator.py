@@ -115,6 +115,15 @@ def left_hand_side(
     return free, hull.mass.rigid_body_matrix(), a_lhs
 
 
+def steps_in(duration: float, dt: float) -> int:
+    """Number of steps of ``dt`` [s] in ``duration`` [s] (ValueError unless a positive
+    multiple, to 1e-9 relative)."""
+    n = round(duration / dt)
+    if n < 1 or abs(n * dt - duration) > 1e-9 * max(1.0, duration):
+        raise ValueError(f"duration {duration} s must be a positive multiple of dt = {dt} s")
+    return n
+
+
 class Simulator:
     """Advance a ship in waves by a fixed physics step.
 
@@ -388,11 +397,7 @@ class Simulator:
         progress : bool
             Show a tqdm progress bar.
         """
-        n = round(duration / self.dt)
-        if n < 1 or abs(n * self.dt - duration) > 1e-9 * max(1.0, duration):
-            raise ValueError(
-                f"duration {duration} s must be a positive multiple of dt = {self.dt} s"
-            )
+        n = steps_in(duration, self.dt)
         rec_t, rec_eta, rec_nu, rec_el = [], [], [], []
         rec_f: dict[str, list[np.ndarray]] = {}
 

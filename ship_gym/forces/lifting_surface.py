@@ -345,27 +345,18 @@ class LiftingSurface:
 
     # ------------------------------------------------------------------ coefficients
     def lift_drag_coefficients(self, alpha: float) -> tuple[float, float]:
-        """(C_L, C_D) at one angle of attack [rad] (scalar fast path of eq. 3–6)."""
-        a = alpha - math.pi * round(alpha / math.pi)  # π-periodic, in [−π/2, π/2]
-        s = 1.0 if a >= 0.0 else -1.0
-        a = abs(a)
-        cd0 = self.zero_lift_drag
-        a_s = self.stall_angle
-        if a <= a_s:
-            cl = self.lift_slope * a
-            return s * cl, cd0 + self._k_induced * cl * cl
-        cn = self.normal_force_coefficient
-        sin_a = math.sin(a)
-        cl_plate = cn * sin_a * math.cos(a)
-        cd_plate = cd0 + cn * sin_a * sin_a
-        if a >= a_s + self.stall_transition:
-            return s * cl_plate, cd_plate
-        sigma = 0.5 * (1.0 - math.cos(math.pi * (a - a_s) / self.stall_transition))
-        cl_max = self.lift_slope * a_s
-        cd_max = cd0 + self._k_induced * cl_max * cl_max
-        cl = (1.0 - sigma) * cl_max + sigma * cl_plate
-        cd = (1.0 - sigma) * cd_max + sigma * cd_plate
-        return s * cl, cd
+        """(C_L, C_D) at one angle of attack [rad] (scalar fast path of eq. 3–6,
+        :func:`section_coefficients`)."""
+        cl, cd = section_coefficients(
+            float(alpha), self.lift_slope, self.stall_angle, self.stall_transition,
+            self.zero_lift_drag, self._k_induced, self.normal_force_coefficient,
+        )  # fmt: skip
+        return float(cl), float(cd)
+
+    @property
+    def induced_drag_factor(self) -> float:
+        """1/(π e AR_e) of the induced drag C_L²/(π e AR_e) [-]."""
+        return self._k_induced
 
     def coefficients(
         self, alpha: float | ArrayLike
@@ -573,10 +564,11 @@ class SurfaceGroup(ForceModel):
 # row kernels (numba; the engine's numpy path and its compiled loop call these)
 # =============================================================================================
 @nb.njit(cache=True)
-def lift_drag_coefficients(
+def section_coefficients(
     alpha, lift_slope, a_s, transition, cd0, k_induced, cn
 ):  # pragma: no cover
-    """LiftingSurface._coefficients: (C_L, C_D), eq. (3)–(6) of the lifting-surface module."""
+    """(C_L, C_D) at the angle of attack α [rad], eq. (3)–(6) of this module (what
+    :meth:`LiftingSurface.lift_drag_coefficients` and the row kernels evaluate)."""
     a = alpha - math.pi * round(alpha / math.pi)
     s = 1.0 if a >= 0.0 else -1.0
     a = abs(a)
@@ -596,16 +588,22 @@ def lift_drag_coefficients(
     return s * cl, cd
 
 
-@nb.njit(cache=True)
-def slipstream_speed(u_a, thrust, diameter, distance, rho, span):  # pragma: no cover
-    """u_R of eq. (4) of the rudder module: rudder._slipstream (eq. 3) and the span fraction."""
+@nb.njit(cache=True, nogil=True)
+def slipstream_axial(u_a, thrust, diameter, distance, rho):  # pragma: no cover - compiled
+    """(V_x [m/s], R_x [m]) of an actuator-disk slipstream at ``distance`` behind the disk,
+    eq. (3) of :mod:`ship_gym.forces.rudder` (Söding 1982), without input checks."""
     r0 = 0.5 * diameter
     u_inf = math.sqrt(u_a * u_a + 8.0 * thrust / (rho * math.pi * diameter * diameter))
     v_x = u_a + (u_inf - u_a) * 0.5 * (1.0 + distance / math.sqrt(distance**2 + r0 * r0))
     if v_x <= 0.0:
-        v_x, r_x = 0.0, r0
-    else:
-        r_x = r0 * math.sqrt(0.5 * (u_a + u_inf) / v_x)
+        return 0.0, r0
+    return v_x, r0 * math.sqrt(0.5 * (u_a + u_inf) / v_x)
+
+
+@nb.njit(cache=True, nogil=True)
+def slipstream_speed(u_a, thrust, diameter, distance, rho, span):  # pragma: no cover
+    """u_R of eq. (4) of the rudder module: :func:`slipstream_axial` and the span fraction."""
+    v_x, r_x = slipstream_axial(u_a, thrust, diameter, distance, rho)
     fraction = min(1.0, 2.0 * r_x / span)
     return math.sqrt(fraction * v_x * v_x + (1.0 - fraction) * u_a * u_a)
 
@@ -658,7 +656,7 @@ def surface_group_force(
             px * chord[k, 0] + py * chord[k, 1] + pz * chord[k, 2],
         )
         alpha = (d - theta + math.pi) % (2.0 * math.pi) - math.pi
-        cl, cd = lift_drag_coefficients(
+        cl, cd = section_coefficients(
             alpha, lift_slope[k], stall[k], transition[k], cd0[k], k_induced[k], cn[k]
         )
         dx, dy, dz = px / speed, py / speed, pz / speed

@@ -103,7 +103,12 @@ from numpy.typing import NDArray
 
 from ship_gym.conventions import RHO_SEAWATER
 from ship_gym.forces.base import ForceContext
-from ship_gym.forces.lifting_surface import LiftingSurface, LiftSlopeModel, SurfaceGroup
+from ship_gym.forces.lifting_surface import (
+    LiftingSurface,
+    LiftSlopeModel,
+    SurfaceGroup,
+    slipstream_axial,
+)
 
 __all__ = ["Rudder", "slipstream_velocity"]
 
@@ -138,13 +143,12 @@ def _velocities(ctx: ForceContext) -> tuple[float, float, float, float, float, f
 def _slipstream(
     u_a: float, thrust: float, diameter: float, distance: float, rho: float
 ) -> tuple[float, float]:
-    """Eq. (3) without input checks (see :func:`slipstream_velocity`)."""
-    r0 = 0.5 * diameter
-    u_inf = math.sqrt(u_a * u_a + 8.0 * thrust / (rho * math.pi * diameter * diameter))
-    v_x = u_a + (u_inf - u_a) * 0.5 * (1.0 + distance / math.sqrt(distance**2 + r0 * r0))
-    if v_x <= 0.0:
-        return 0.0, r0
-    return v_x, r0 * math.sqrt(0.5 * (u_a + u_inf) / v_x)
+    """Eq. (3) without input checks (see :func:`slipstream_velocity`): the kernel
+    :func:`ship_gym.forces.lifting_surface.slipstream_axial`."""
+    v_x, r_x = slipstream_axial(
+        float(u_a), float(thrust), float(diameter), float(distance), float(rho)
+    )
+    return float(v_x), float(r_x)
 
 
 def slipstream_velocity(

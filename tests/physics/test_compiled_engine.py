@@ -155,3 +155,22 @@ def test_bad_commands_are_refused_before_any_step():
     assert sim.n_steps.tolist() == [0, 0]
     sim.advance(2)  # the refused commands were not kept
     assert sim.n_steps.tolist() == [2, 2]
+
+
+def test_rudder_thrust_commands_without_a_propeller_run_on_the_numpy_path():
+    # the compiled loop knows only the rudder's C_Th: a "propeller_thrust" command (read by the
+    # numpy path for a rudder without a propeller) sends the call to the numpy path under
+    # "auto", with the numpy path's result, and is refused under "compiled"
+    setup = ShipSetup(speed=6.0, manoeuvring=True, rudder="command")
+    fields = _fields(2)
+    cmd = {"rudder_command": np.full(2, 0.2), "propeller_thrust": np.array([4e5, 8e5])}
+    auto = build_batch_simulator(setup, fields)
+    numpy_path = build_batch_simulator(setup, fields, backend="numpy")
+    assert auto.compiled
+    for sim in (auto, numpy_path):
+        sim.advance(20, cmd)
+    np.testing.assert_array_equal(auto.eta, numpy_path.eta)
+    compiled = build_batch_simulator(setup, fields, backend="compiled")
+    with pytest.raises(NotImplementedError, match="propeller_thrust"):
+        compiled.advance(1, cmd)
+    assert "propeller_thrust" not in compiled.commands
