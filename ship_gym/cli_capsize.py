@@ -7,8 +7,8 @@
 * ``dead-ship``: no propulsion, beam irregular seas; roll statistics and capsize probability over
   seeds (:mod:`ship_gym.analysis.intact_stability`).
 
-All three run on the compiled engine where the configuration allows it; ``--engine simulator``
-forces the single-ship reference Simulator.
+All three run on the engine: ``--engine auto`` (default) batches the seeds of a cell into one
+engine call, ``--engine simulator`` runs one ship at a time.
 """
 
 from __future__ import annotations
@@ -18,9 +18,8 @@ import argparse
 from ship_gym.cli_common import add_overrides_argument, parse_overrides, write_json
 
 ENGINE_HELP = (
-    "simulation path: 'auto' (default) the compiled engine (BatchSimulator) where the radiation "
-    "model and integrator allow it, else the single-ship Simulator; 'engine' or 'simulator' to "
-    "force one (the Simulator is the reference; both agree to rounding)"
+    "how the engine runs the study: 'auto'/'engine' (default) the seeds of a cell as the ships "
+    "of one batch, 'simulator' one ship at a time (both agree to rounding)"
 )
 
 
@@ -59,7 +58,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--seeds", type=int, default=1, help="seeds per cell (0..n-1)")
     p.add_argument("--duration", type=float, default=720.0, help="simulated time per run [s]")
     p.add_argument("--dt", type=float, default=0.1, help="physics time step [s]")
-    p.add_argument("--integrator", default="rk4", choices=("rk4", "abm", "holloway"))
+    p.add_argument("--integrator", default="rk4", choices=("rk4", "holloway"))
     p.add_argument(
         "--radiation",
         default="state_space",

@@ -52,8 +52,8 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--integrator",
         default="holloway",
-        choices=["rk4", "abm", "holloway"],
-        help="holloway (1 force evaluation/step, default), rk4 (4) or abm (reference path only)",
+        choices=["rk4", "holloway"],
+        help="holloway (1 force evaluation/step, default) or rk4 (4)",
     )
     p.add_argument(
         "--precision",
@@ -72,8 +72,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
     from ship_gym.conventions import DOF_NAMES, dof_index
-    from ship_gym.engine.batch import build_batch_simulator
-    from ship_gym.engine.ship import ShipSetup, build_simulator, wave_field_for
+    from ship_gym.engine.ship import ShipSetup, build_simulator
     from ship_gym.io_utils import atomic_write
     from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
@@ -100,21 +99,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         sea = None
     beta = np.radians(args.heading_deg)
     rng = np.random.default_rng(args.seed)
-    if args.radiation == "convolution" or args.integrator == "abm":
-        # the reference path (Cummins convolution, ABM): the single-ship Python simulator
-        sim = build_simulator(setup, sea, wave_heading=beta, rng=rng)
-        engine = "reference path (Simulator)"
-        start = time.perf_counter()
-        result = sim.run(args.duration, progress=True)
-    else:
-        field = wave_field_for(sea, beta, rng)
-        batch = build_batch_simulator(setup, [field], sea=sea, wave_heading=beta)
-        engine = "compiled engine" if batch.compiled else "engine (numpy path)"
-        batch.advance(1)  # compiles on the first run of a fresh install (numba cache)
-        batch.reset()
-        start = time.perf_counter()
-        result = batch.record(args.duration, record_every=max(1, round(0.1 / args.dt)),
-                              progress=True)  # fmt: skip
+    sim = build_simulator(setup, sea, wave_heading=beta, rng=rng)
+    engine = "compiled engine" if sim.engine.compiled else "engine, numpy path"
+    eta0 = sim.eta
+    sim.advance(1)  # compiles on the first run of a fresh install (numba cache)
+    sim.reset(eta=eta0)
+    start = time.perf_counter()
+    result = sim.run(args.duration, record_every=max(1, round(0.1 / args.dt)), progress=True)
     wall = time.perf_counter() - start
     print(
         f"simulated {args.duration:.0f} s in {wall:.1f} s wall ({args.duration / wall:.1f}× "

@@ -1,8 +1,7 @@
 """Type aliases used across the package, defined once.
 
 ``FloatArray`` is a float64 NumPy array; ``IntegratorName`` names the time-stepping schemes
-of the engine (:mod:`ship_gym.engine.integrators`); ``Precision`` the floating-point width of
-the Froude–Krylov wave sums.
+of the engine; ``Precision`` the floating-point width of the Froude–Krylov wave sums.
 """
 
 from __future__ import annotations
@@ -12,18 +11,15 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["FloatArray", "IntegratorName", "Precision", "RowIntegratorName"]
+__all__ = ["FloatArray", "IntegratorName", "Precision"]
 
 FloatArray = NDArray[np.float64]
 """A float64 array (shape given where it is used)."""
 
-IntegratorName = Literal["rk4", "abm", "holloway"]
-"""RK4 (4 force evaluations per step), Adams–Bashforth–Moulton (2) or Holloway's μ-Taylor
-scheme (1, after a 2-step RK4 start-up)."""
-
-RowIntegratorName = Literal["holloway", "rk4"]
-"""The schemes of the row engine (:class:`ship_gym.engine.batch.BatchSimulator`, its compiled
-backend and the environments): Holloway's μ-Taylor scheme or RK4."""
+IntegratorName = Literal["rk4", "holloway"]
+"""The schemes of the engine (:class:`ship_gym.engine.batch.BatchSimulator`, its compiled
+backend, the single-ship view and the environments): RK4 (4 force evaluations per step) or
+Holloway's μ-Taylor scheme (1, after a 2-step RK4 start-up)."""
 
 Precision = Literal["float64", "float32"]
 """Precision of the Froude–Krylov wave sums (float32: ≈ 2e-7 relative)."""

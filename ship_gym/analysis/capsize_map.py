@@ -13,32 +13,30 @@ Capsize is declared, and the run stopped, when
 
 * ``"roll"``: |φ| exceeds the capsize angle — by default the angle of vanishing stability of the
   loading condition (:func:`ship_gym.hull.righting_arm`, calm water, free sinkage and trim), or
-* ``"diverged"``: the state no longer makes sense (non-finite, or |ν| above the simulator's
-  limit, e.g. the hull flying out of the water): the single-ship simulator raises
-  :class:`~ship_gym.engine.simulator.SimulationDiverged`, the engine flags the ship.
+* ``"diverged"``: the state no longer makes sense (non-finite, or |ν| above the engine's
+  limit, e.g. the hull flying out of the water): the engine flags the ship (one ship on a
+  :class:`~ship_gym.engine.simulator.Simulator` raises
+  :class:`~ship_gym.engine.simulator.SimulationDiverged`).
 
 Both are checked after every physics step. The time to capsize is that of the first step beyond
 the angle (``"roll"``) or of the step that failed (``"diverged"``: the last valid time + Δt).
 
-Engine. Where the configuration allows it (radiation ``"state_space"``, ``"2a"``, ``"2b"`` or
-``"none"``; integrator ``"rk4"`` or ``"holloway"``) the cells of one (sea, heading, Froude
-number) run together on ONE :class:`~ship_gym.engine.batch.BatchSimulator`, a ship per seed
-(:func:`run_cells`, :func:`simulate_ships_until_capsize`): one compiled call
+Engine. The cells of one (sea, heading, Froude number) run together on ONE
+:class:`~ship_gym.engine.batch.BatchSimulator`, a ship per seed (:func:`run_cells`,
+:func:`simulate_ships_until_capsize`): one compiled call
 (:meth:`~ship_gym.engine.batch.BatchSimulator.advance`) advances all of them by one recording
-interval (``record_every`` steps), its per-step reductions (``danger_steps`` with the capsize
-angle as threshold) and per-ship divergence flags tell which ship capsized in it. A ship that
-capsized is stopped there; its exact capsize step is then found by *replaying* it — reset to its
-initial state, the same chunks up to the one in which it capsized, then that chunk step by step
-— so the time to capsize, the statistics and the final state are those of the step-by-step
-run, not of the chunk end. (The compiled engine is bit-identical per ship for any batch size and
-chunk split, so the replay reproduces the run exactly; this is checked and a mismatch raises.
-On the engine's numpy backend the ships advance step by step instead, without replay.) The
-radiation convolution and the ABM integrator are implemented only in the single-ship
-:class:`~ship_gym.engine.simulator.Simulator` (:func:`~ship_gym.engine.ship.build_simulator`),
-the reference path these cells fall back to, one cell at a time. Both paths agree to rounding
-(≈ 1e-12 relative; tested); ``engine="simulator"`` forces the reference path. On the compiled
-engine a ship's result does not depend on the cells it runs with (bit for bit), so a map is the
-same run serially, in parallel, or resumed.
+interval (``record_every`` steps), its per-step reductions (``danger_steps`` with the capsize angle
+as threshold) and per-ship divergence flags tell which ship capsized in it. A ship that capsized is
+stopped there; its exact capsize step is then found by *replaying* it — reset to its initial state,
+the same chunks up to the one in which it capsized, then that chunk step by step — so the time to
+capsize, the statistics and the final state are those of the step-by-step run, not of the chunk end.
+(The compiled engine is bit-identical per ship for any batch size and chunk split, so the replay
+reproduces the run exactly; this is checked and a mismatch raises. On the engine's numpy backend —
+the Cummins convolution radiation — the ships advance step by step instead, without replay.)
+``engine="simulator"`` runs one cell at a time on a :class:`~ship_gym.engine.simulator.Simulator`
+(:func:`~ship_gym.engine.ship.build_simulator`: the same engine with one ship); both agree to
+rounding (≈ 1e-12 relative; tested). On the compiled engine a ship's result does not depend on the
+cells it runs with (bit for bit), so a map is the same run serially, in parallel, or resumed.
 
 Per cell: capsize yes/no, the reason, the time to capsize [s], max |φ| and RMS φ after the ramp
 [deg], max |θ| [deg], max heading deviation [deg] and the mean surge speed [m/s]. Over seeds a
@@ -49,8 +47,9 @@ configuration and every further line one finished cell, appended and ``fsync``-e
 of cells finishes (the parent process is the only writer, so parallel workers never
 interleave). Besides the outcome, a record holds ``speed`` [m/s], ``cpu_s`` (the CPU time of its
 batch [s] divided by the batch's cells), ``engine`` (``"compiled"`` or ``"numpy"``: the
-:class:`~ship_gym.engine.batch.BatchSimulator` backend; ``"simulator"``: the single-ship
-reference) and ``batch_size`` (ships run together; 1 on the reference path); records written
+:class:`~ship_gym.engine.batch.BatchSimulator` backend; ``"simulator"``: one cell at a time on a
+:class:`~ship_gym.engine.simulator.Simulator`) and ``batch_size`` (ships run together; 1 for
+``"simulator"``); records written
 before these two fields existed lack them. A rerun with the same configuration skips the cells
 already there; a different configuration raises a ValueError naming the differing keys (results
 are never mixed). A torn last line (a crash during a write) is cut off before appending.
@@ -114,20 +113,18 @@ FORMAT_VERSION = 1
 CellRunner = Callable[["CapsizeMapConfig", "Cell", float], dict]
 
 EngineChoice = Literal["auto", "engine", "simulator"]
-"""Which path runs a capsize study: ``"auto"`` the engine
-(:class:`~ship_gym.engine.batch.BatchSimulator`) where the radiation model and integrator
-allow it (:func:`engine_supports`), else the single-ship reference
-:class:`~ship_gym.engine.simulator.Simulator`; ``"engine"`` the engine (NotImplementedError
-where unsupported); ``"simulator"`` the reference path."""
-
-ENGINE_RADIATION = ("state_space", "2a", "2b", "none")
-"""Radiation models of the engine (the convolution is single-ship only)."""
-ENGINE_INTEGRATORS = ("rk4", "holloway")
-"""Integrators of the engine (ABM is single-ship only)."""
+"""How a capsize study drives the engine: ``"auto"`` and ``"engine"`` run the cells of one
+(sea, heading, Froude number) together, a ship per seed, on one
+:class:`~ship_gym.engine.batch.BatchSimulator`; ``"simulator"`` runs one cell at a time on a
+:class:`~ship_gym.engine.simulator.Simulator` (the same engine with one ship, stepped and
+checked after every step by the study)."""
 
 
 def engine_supports(radiation: str, integrator: str) -> bool:
-    """Whether the engine runs this radiation model and integrator (else the Simulator does).
+    """Whether the engine runs this radiation model and integrator.
+
+    Every radiation model of :class:`~ship_gym.engine.ship.ShipSetup` and both integrators run
+    on the engine (the Cummins convolution on its numpy path).
 
     Parameters
     ----------
@@ -136,29 +133,27 @@ def engine_supports(radiation: str, integrator: str) -> bool:
     integrator : str
         Time integrator.
     """
-    return radiation in ENGINE_RADIATION and integrator in ENGINE_INTEGRATORS
+    from ship_gym.engine.ship import RADIATION_MODELS
+
+    return radiation in RADIATION_MODELS and integrator in ("rk4", "holloway")
 
 
 def use_engine(engine: EngineChoice, radiation: str, integrator: str) -> bool:
-    """Resolve an :data:`EngineChoice` for a configuration: True for the engine.
+    """Resolve an :data:`EngineChoice` for a configuration: True for batched cells.
 
     Raises
     ------
     ValueError
-        For an unknown choice.
-    NotImplementedError
-        For ``"engine"`` with a radiation model or integrator the engine does not have.
+        For an unknown choice, radiation model or integrator.
     """
     if engine not in ("auto", "engine", "simulator"):
         raise ValueError(f"engine must be 'auto', 'engine' or 'simulator', got {engine!r}")
-    supported = engine_supports(radiation, integrator)
-    if engine == "engine" and not supported:
-        raise NotImplementedError(
-            f"the engine runs radiation {ENGINE_RADIATION} and integrators "
-            f"{ENGINE_INTEGRATORS}, not radiation={radiation!r}, integrator={integrator!r}; "
-            "use engine='auto' or 'simulator' (the single-ship reference path)"
+    if not engine_supports(radiation, integrator):
+        raise ValueError(
+            f"radiation={radiation!r}, integrator={integrator!r}: expected a radiation model of "
+            "ShipSetup and integrator 'rk4' or 'holloway'"
         )
-    return engine != "simulator" and supported
+    return engine != "simulator"
 
 
 # ----------------------------------------------------------------------------- sea states
@@ -281,7 +276,7 @@ class CapsizeMapConfig:
         Simulated time per run [s] (multiple of ``dt``).
     dt : float
         Physics time step [s].
-    integrator : {"rk4", "abm", "holloway"}
+    integrator : {"rk4", "holloway"}
         Time integrator.
     radiation : {"state_space", "convolution", "2a", "2b", "none"}
         Radiation model.
@@ -796,16 +791,8 @@ def _replay_capsizes(
 
 def _rudder_probe(sim: Simulator) -> Callable[[], float]:
     """A callable returning the applied rudder angle [rad] (NaN when there is no rudder)."""
-    from ship_gym.control.actuators import Actuated
-
-    for f in sim.forces:
-        if isinstance(f, Actuated) and f.key == "rudder":
-
-            def angle(f: Actuated = f) -> float:
-                return float(f.servo.applied(f.angle))
-
-            return angle
-    return lambda: math.nan
+    probe = _batch_rudder_probe(sim.engine)
+    return lambda: float(probe()[0])
 
 
 def _batch_rudder_probe(sim: BatchSimulator) -> Callable[[], np.ndarray]:
@@ -949,8 +936,8 @@ def run_cells(
 
     On the engine (:data:`EngineChoice`) the cells run as the ships of one batch
     (:func:`build_cells_simulator`, :func:`simulate_ships_until_capsize`), each with the result
-    it has alone; on the reference path one :class:`~ship_gym.engine.simulator.Simulator`
-    after the other.
+    it has alone; with ``engine="simulator"`` one
+    :class:`~ship_gym.engine.simulator.Simulator` after the other.
 
     Parameters
     ----------
@@ -1206,8 +1193,8 @@ def run_capsize_map(
     With the default runner, the pending seeds of each (sea, heading, Froude number) run as one
     engine batch (:func:`run_cells`; at most :data:`MAX_BATCH` seeds, split further so that
     ``n_jobs`` workers all have work) and
-    their records are written when the batch finishes; on the reference path (``engine``, or a
-    configuration the engine lacks) and with a ``cell_runner``, cell by cell. A cell's result
+    their records are written when the batch finishes; with ``engine="simulator"`` and with a
+    ``cell_runner``, cell by cell. A cell's result
     does not depend on its batch.
 
     Parameters

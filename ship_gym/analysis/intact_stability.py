@@ -45,6 +45,7 @@ batch per worker with ``n_jobs`` > 1; a seed's result does not depend on its bat
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Literal
@@ -107,13 +108,26 @@ def mathieu_growth(h: float, zeta: float, omega_e: float, omega_roll: float) -> 
     return float(sigma), bool(sigma > 0.0)
 
 
-def _fk_simulator(hull, wave_field):
-    from ship_gym.engine.simulator import Simulator
+def _hydrostatic_force(hull, wave_field) -> Callable[[float, float, float], np.ndarray]:
+    """Body-axis Froude–Krylov + hydrostatic force and weight [N, N·m] at rest at t = 0, as a
+    function of (heave [m], trim [rad], heel [rad])."""
+    from ship_gym.engine.rigid_body import gravity_force
+    from ship_gym.forces.base import ForceContext
     from ship_gym.forces.froude_krylov import FroudeKrylovHydrostatics
+    from ship_gym.kinematics import rotation_matrix
 
     fk = FroudeKrylovHydrostatics(hull, wave_field)
-    sim = Simulator(hull, [fk], wave_field=wave_field)
-    return sim, fk.name
+    phasor = wave_field.phasor(0.0)
+    mass = hull.mass
+
+    def force(heave: float, trim: float, heel: float) -> np.ndarray:
+        eta = np.array([0.0, 0.0, heave, heel, trim, 0.0])
+        rot = rotation_matrix(heel, trim, 0.0)
+        ctx = ForceContext(t=0.0, eta=eta, nu=np.zeros(6), rotation=rot, wave_phasor=phasor)
+        f, _ = fk.evaluate(ctx, np.zeros(0))
+        return f + gravity_force(mass.mass, mass.cog, rot, hull.g)
+
+    return force
 
 
 def gm_in_waves(
@@ -157,14 +171,7 @@ def gm_in_waves(
     for xc in np.atleast_1d(np.asarray(crest_positions, float)):
         # waves travel to χ = 0 (north = +x); ζ = a cos(ωt − kX + ε): crest at X = xc at t = 0
         wave = RegularWave(height=height, wavelength=wavelength, phase=k * xc, ramp_time=0.0)
-        sim, name = _fk_simulator(hull, WaveField.regular(wave))
-
-        def force(heave: float, trim: float, heel: float, sim=sim, name=name) -> np.ndarray:
-            sim.t = 0.0
-            sim.eta = np.array([0.0, 0.0, heave, heel, trim, 0.0])
-            sim.nu = np.zeros(6)
-            bd = sim.force_breakdown()
-            return bd[name] + bd["gravity"]
+        force = _hydrostatic_force(hull, WaveField.regular(wave))
 
         def residual(v: np.ndarray, force=force) -> np.ndarray:
             f = force(v[0], v[1], 0.0)

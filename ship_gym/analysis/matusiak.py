@@ -152,7 +152,7 @@ class Scenario:
         Library hull.
     duration, dt : float
         Run length and physics step [s].
-    integrator : {"rk4", "holloway", "abm"}
+    integrator : {"rk4", "holloway"}
         Time integrator.
     ramp_time : float
         T_f of eq. 12 [s].
@@ -165,7 +165,7 @@ class Scenario:
     hull: str = "s175"
     duration: float = DURATION
     dt: float = 0.1
-    integrator: Literal["rk4", "holloway", "abm"] = "rk4"
+    integrator: Literal["rk4", "holloway"] = "rk4"
     ramp_time: float = RAMP_TIME
 
     def __post_init__(self) -> None:
@@ -216,7 +216,7 @@ class Scenario:
 
     def build(self):
         """The single-ship :class:`~ship_gym.engine.simulator.Simulator` at the start of the
-        run (heading north, waves to β): the reference path."""
+        run (heading north, waves to β): the engine with one ship."""
         from ship_gym.engine.ship import build_simulator
 
         length = self.length()
@@ -380,9 +380,9 @@ def run_scenario(
     progress : bool
         tqdm progress bar.
     engine : {"auto", "engine", "simulator"}
-        ``"auto"``: the engine (:meth:`Scenario.build_engine`) unless the scenario needs the
-        single-ship Simulator (convolution, ABM); ``"simulator"`` forces the reference path
-        (:data:`ship_gym.analysis.capsize_map.EngineChoice`).
+        ``"auto"``/``"engine"``: a batch of one ship (:meth:`Scenario.build_engine`);
+        ``"simulator"``: a :class:`~ship_gym.engine.simulator.Simulator` (:meth:`Scenario.build`)
+        stepped by the study (:data:`ship_gym.analysis.capsize_map.EngineChoice`).
 
     Returns
     -------

@@ -354,7 +354,6 @@ class Actuated(ForceModel):
             rotation=ctx.rotation,
             forward_speed=ctx.forward_speed,
             wave_phasor=ctx.wave_phasor,
-            acceleration_extrapolated=ctx.acceleration_extrapolated,
             commands={**ctx.commands, self.key: self.current_angle(ctx)},
             shared=ctx.shared,
         )

@@ -1,11 +1,11 @@
-"""Many ships of one setup, each in its own sea, stepped together (the vector env's engine).
+"""The engine: N ≥ 1 ships of one setup, each in its own sea, stepped together.
 
 :class:`BatchSimulator` advances N ships that share the hull, the hydrodynamic database and the
 force-model setup, but each has its own wave field (zero-padded to a common component count,
 :func:`ship_gym.waves.wave_field.stack_fields`), its own state, its own time and its own
-integrator history. The equations are those of :class:`ship_gym.engine.simulator.Simulator`
-(Kring–Huang–Sclavounos form, instantaneous added mass on the left), written with a leading
-batch axis:
+integrator history; one ship is N = 1 (:class:`ship_gym.engine.simulator.Simulator` is that
+view). The equations (Kring–Huang–Sclavounos form, instantaneous added mass on the left) are
+written with a leading batch axis:
 
     (M_RB + A_lhs) ν̇ₛ = Σᵢ Fᵢ(tₛ, ηₛ, νₛ, zₛ) + F_gravity(ηₛ) − C_RB(νₛ) νₛ,   η̇ₛ = J(ηₛ) νₛ,
 
@@ -24,24 +24,24 @@ call per force model for all ships:
   kinematics J(η)ν: one fused numba loop over ships; the wave phasors cⱼ(t) (ramp included)
   and their folding to each ship's O: one numba loop over ships × components.
 
-It agrees with N independent :class:`Simulator` objects (same setup, same seas, same initial
-states) to rounding (tested to 1e-9 relative over hundreds of steps; ≈ 1e-14 observed).
+Ship s of a batch follows the trajectory it has alone (tested to 1e-9 relative over hundreds of
+steps; ≈ 1e-14 observed; bit for bit on the compiled backend). The phasors are recomputed with
+trig at every evaluation (2 × N × n_comp sin/cos): cheap next to the hull-panel sum, and it
+keeps per-ship clocks and RK4 stage times trivial.
 
-Cost: beyond the Froude–Krylov kernel, ≈ 40–70 µs per evaluation for one ship (vs ≈ 300 µs of
-Python/numpy overhead per evaluation in :class:`Simulator`), growing slowly with N
-(``scripts/bench_simulator.py``). The phasors are recomputed with trig at every evaluation
-(2 × N × n_comp sin/cos): cheap next to the hull-panel sum, and it keeps per-ship clocks and
-RK4 stage times trivial.
+Two paths run the same row models: the compiled backend (:mod:`ship_gym.engine.compiled`, K
+steps of all ships in one numba call) and the numpy path below (one call per model per
+evaluation), which also runs models without a compiled version (:class:`PerShipForceModel`:
+the Cummins convolution, added resistance in waves, a user's own :class:`ForceModel`).
 
 Integrators
 -----------
 ``"rk4"`` (4 evaluations per step) and ``"holloway"`` (Holloway's μ-Taylor scheme, 1 evaluation
 per step after a 2-step RK4 start-up; the arithmetic of
-:class:`ship_gym.engine.integrators.HollowayIntegrator` on batch arrays, with the same default
-μ as the single-ship simulator). Histories are per ship, so a ship that is reset restarts its own
-start-up while the others go on with one evaluation per step: the start-up ships' extra RK4
-stages are evaluated for those ships only. ``"abm"`` and Holloway's lumped mode are not
-implemented here (use :class:`Simulator`).
+:class:`ship_gym.engine.integrators.HollowayIntegrator` on batch arrays, μ = 1 by default: the
+acceleration is exact, the added mass being on the left). Histories are per ship, so a ship that
+is reset restarts its own start-up while the others go on with one evaluation per step: the
+start-up ships' extra RK4 stages are evaluated for those ships only.
 
 Per-ship control
 ----------------
@@ -58,7 +58,6 @@ Per-ship control
   message in :attr:`BatchSimulator.divergence_messages`, and skipped until it is reset; the
   others continue.
 
-Not supported: the convolution radiation path (the reference path; use :class:`Simulator`).
 """
 
 from __future__ import annotations
@@ -75,14 +74,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from ship_gym.conventions import ROLL, SURGE
 from ship_gym.engine.batch_control import batch_control_model, trim_batch_shaft_speed
-from ship_gym.engine.rigid_body import healthy_state, rigid_body_terms
+from ship_gym.engine.results import SimulationDiverged, SimulationResult, steps_in
+from ship_gym.engine.rigid_body import healthy_state, left_hand_side, rigid_body_terms
 from ship_gym.engine.ship import Sea, ShipSetup, build_force_models
-from ship_gym.engine.simulator import (
-    SimulationDiverged,
-    SimulationResult,
-    left_hand_side,
-    steps_in,
-)
 from ship_gym.forces.base import (
     BatchContext,
     BatchForceModel,
@@ -107,7 +101,7 @@ from ship_gym.forces.viscous import ViscousRollDamping
 from ship_gym.hull import equilibrium, load_hull
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
-from ship_gym.typing import RowIntegratorName
+from ship_gym.typing import IntegratorName
 from ship_gym.waves.wave_field import WaveField, stack_fields
 
 if TYPE_CHECKING:
@@ -348,12 +342,8 @@ class BatchStateSpaceRadiation(BatchForceModel):
         """Reuse the fitted matrices of a single-ship ``RadiationMemory(method="state_space")``."""
         if model.method != "state_space" or model.state_space is None:
             raise NotImplementedError(
-                "BatchSimulator supports the state-space radiation memory only; the convolution "
-                "(reference path) runs in ship_gym.engine.simulator.Simulator"
-            )
-        if model.lumped:
-            raise NotImplementedError(
-                "Holloway's lumped radiation mode is not implemented in BatchSimulator"
+                "the Cummins convolution has no row version; it runs per ship "
+                "(PerShipForceModel) on the engine's numpy path"
             )
         ss = model.state_space
         return cls(ss.A, ss.B, ss.C, ss.D, model.A_inf)
@@ -760,8 +750,7 @@ class BatchSimulator:
     free_dofs : sequence of bool, optional
         (6,) integrated DOFs; held DOFs keep their initial velocity.
     mu : array_like, optional
-        Holloway blending factors per DOF; default 1 (the acceleration is exact), as in
-        :class:`Simulator` without a lumped model.
+        Holloway blending factors per DOF; default 1 (the acceleration is exact).
     max_abs_velocity : float
         |ν| above which a ship is declared diverged [m/s, rad/s].
     initial_eta : array_like, optional
@@ -804,7 +793,7 @@ class BatchSimulator:
         *,
         forward_speed: float = 0.0,
         dt: float = 0.05,
-        integrator: RowIntegratorName = "rk4",
+        integrator: IntegratorName = "rk4",
         free_dofs: Sequence[bool] | None = None,
         mu: ArrayLike | None = None,
         max_abs_velocity: float = 100.0,
@@ -842,9 +831,9 @@ class BatchSimulator:
         """The ships' seas (as given; None: calm water)."""
         for f in self.forces:
             f.bind(self.n_ships, self._seas.n_comp)
-        self.forward_speed = float(forward_speed)
+        self._forward_speed = float(forward_speed)
         self.dt = float(dt)
-        self.integrator_name: RowIntegratorName = integrator
+        self.integrator_name: IntegratorName = integrator
         self.max_abs_velocity = float(max_abs_velocity)
         self.free, self.mass_rb, a_lhs = left_hand_side(hull, self.forces, free_dofs)
         self.added_mass_lhs = a_lhs
@@ -866,7 +855,7 @@ class BatchSimulator:
         self._slices = [slice(bounds[i], bounds[i + 1]) for i in range(len(self.forces))]
         self.n_states = int(bounds[-1])
         if mu is None:
-            mu = np.ones(6)  # exact acceleration (no lumped added mass): no blending
+            mu = np.ones(6)  # exact acceleration (added mass on the left): no blending
         self.mu = np.broadcast_to(np.asarray(mu, float), (6,)).copy()
         if not (np.all(np.isfinite(self.mu)) and np.all(self.mu > 0.0)):
             raise ValueError(f"mu must be positive and finite, got {mu!r}")
@@ -905,6 +894,25 @@ class BatchSimulator:
         self._compiled: Any = None
         self._compiled_error: str | None = None
         self.reset()
+
+    @property
+    def forward_speed(self) -> float:
+        """Steady forward speed U [m/s] about which radiation is linearised (shared).
+
+        A new value takes effect from the next step (the compiled records are rebuilt) and
+        becomes the default surge speed of :meth:`reset`.
+        """
+        return self._forward_speed
+
+    @forward_speed.setter
+    def forward_speed(self, value: float) -> None:
+        u = float(value)
+        if not np.isfinite(u):
+            raise ValueError(f"forward_speed must be a finite speed [m/s], got {value!r}")
+        if u != self._forward_speed:
+            self._forward_speed = u
+            self._compiled = None
+            self._compiled_error = None
 
     # ------------------------------------------------------------------ compiled backend
     @property
@@ -1569,7 +1577,7 @@ def build_batch_simulator(
     Parameters
     ----------
     setup : ShipSetup
-        ``integrator`` "rk4" or "holloway"; ``radiation`` not "convolution"; not lumped.
+        Ship, models and numerics (the Cummins convolution runs per ship on the numpy path).
     wave_fields : sequence of WaveField or None
         One sea per ship.
     sea : RegularWave or IrregularSea, optional
@@ -1602,17 +1610,6 @@ def build_batch_simulator(
 
     if control not in ("batch", "per_ship"):
         raise ValueError(f"control must be 'batch' or 'per_ship', got {control!r}")
-    if setup.integrator not in ("rk4", "holloway"):
-        raise NotImplementedError(
-            f"BatchSimulator implements 'rk4' and 'holloway', not {setup.integrator!r}"
-        )
-    if setup.radiation == "convolution":
-        raise NotImplementedError(
-            "BatchSimulator supports the state-space radiation memory only (the convolution is "
-            "the single-ship reference path)"
-        )
-    if setup.lumped:
-        raise NotImplementedError("Holloway's lumped mode is not implemented in BatchSimulator")
     fields = list(wave_fields)
     hull = load_hull(setup.hull, **setup.hull_overrides)
     database = load_database(setup.database)
@@ -1633,7 +1630,7 @@ def build_batch_simulator(
             try:
                 vectorised = batch_force_models([m])
             except NotImplementedError:
-                if isinstance(m, RadiationMemory | FroudeKrylovHydrostatics | Diffraction):
+                if isinstance(m, FroudeKrylovHydrostatics | Diffraction):
                     raise
         if vectorised is not None:
             batch_models += vectorised

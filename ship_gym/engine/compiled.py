@@ -1096,7 +1096,7 @@ class CompiledShip:
             If a step produces a non-finite or too fast state; the ship keeps the state of the
             start of that step.
         """
-        from ship_gym.engine.simulator import SimulationDiverged
+        from ship_gym.engine.results import SimulationDiverged
 
         if int(n_steps) < 0:
             raise ValueError(f"n_steps must be ≥ 0, got {n_steps!r}")

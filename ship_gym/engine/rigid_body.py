@@ -16,11 +16,16 @@ is T(φ, θ) ν₂ (Matusiak eq. 5).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numba as nb
 import numpy as np
 
 from ship_gym.kinematics import euler_rate_matrix, rotation_matrix, skew
+
+if TYPE_CHECKING:
+    from ship_gym.hull.hull import Hull
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -146,3 +151,34 @@ def healthy_state(q, v, z, v_max):  # pragma: no cover - compiled
     for i in range(z.shape[0]):
         good &= np.isfinite(z[i])
     return good
+
+
+def left_hand_side(
+    hull: Hull, forces: Sequence, free_dofs: Sequence[bool] | None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Held-DOF mask, rigid-body mass matrix and the added mass the models put on the left.
+
+    Parameters
+    ----------
+    hull : Hull
+        Mass properties.
+    forces : sequence
+        Force models; each may declare ``added_mass`` (6×6) for the left-hand side.
+    free_dofs : sequence of bool or None
+        Which DOFs are integrated (None: all).
+
+    Returns
+    -------
+    free : numpy.ndarray
+        (6,) bool.
+    mass_rb, added_mass : numpy.ndarray
+        (6, 6) M_RB about O and Σ A_lhs [kg, kg·m, kg·m²].
+    """
+    free = np.ones(6, bool) if free_dofs is None else np.asarray(free_dofs, bool)
+    if free.shape != (6,):
+        raise ValueError(f"free_dofs must have 6 booleans, got {free_dofs!r}")
+    a_lhs = np.zeros((6, 6))
+    for f in forces:
+        if f.added_mass is not None:
+            a_lhs = a_lhs + np.asarray(f.added_mass, float)
+    return free, hull.mass.rigid_body_matrix(), a_lhs

@@ -30,13 +30,11 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ship_gym.control.actuators import FIN_SERVO, FOIL_SERVO, RUDDER_SERVO, Actuated
 from ship_gym.control.autopilot import HeadingAutopilot
 from ship_gym.control.stabilisers import FinController, RideController, control_derivative
 from ship_gym.engine.linearization import nomoto_from_models
-from ship_gym.engine.simulator import Simulator
 from ship_gym.forces.added_resistance import AddedResistance
 from ship_gym.forces.base import ForceModel
 from ship_gym.forces.diffraction import Diffraction
@@ -59,6 +57,8 @@ from ship_gym.waves.wave_field import WaveField
 
 if TYPE_CHECKING:
     import xarray as xr
+
+    from ship_gym.engine.simulator import Simulator
 
 RadiationName = Literal["state_space", "convolution", "2a", "2b", "none"]
 RADIATION_MODELS: tuple[str, ...] = ("state_space", "convolution", "2a", "2b", "none")
@@ -86,7 +86,7 @@ class ShipSetup:
         Include Ikeda viscous roll damping.
     bilge_keels : bool
         Fit bilge keels (an assumed 0.25 Lpp × 0.45 m pair amidships) in the Ikeda estimate.
-    integrator : {"rk4", "abm", "holloway"}
+    integrator : {"rk4", "holloway"}
         Time integration scheme.
     dt : float
         Physics time step [s].
@@ -95,9 +95,6 @@ class ShipSetup:
         forces within ≈ 1e-7 of the reference).
     free_dofs : tuple of bool
         DOFs integrated (held DOFs keep their initial velocity).
-    lumped : bool
-        Holloway's lumped mode (radiation added mass in the force; needs ``integrator="holloway"``
-        and a Cummins radiation model).
     propulsion : bool
         Resistance + propeller (surge balance; default shaft speed: self-propulsion at ``speed``).
     manoeuvring : bool
@@ -127,7 +124,6 @@ class ShipSetup:
     dt: float = 0.05
     fk_method: Literal["fast", "fast32", "reference"] = "fast"
     free_dofs: tuple[bool, ...] = (True, True, True, True, True, True)
-    lumped: bool = False
     propulsion: bool = False
     manoeuvring: bool = False
     rudder: Literal["none", "command", "autopilot"] = "none"
@@ -151,14 +147,8 @@ class ShipSetup:
             )
         if self.radiation not in RADIATION_MODELS:
             raise ValueError(f"radiation must be one of {RADIATION_MODELS}, got {self.radiation!r}")
-        if self.lumped and (
-            self.integrator != "holloway" or self.radiation not in ("state_space", "convolution")
-        ):
-            raise ValueError(
-                "lumped radiation needs integrator='holloway' and a Cummins radiation model "
-                f"('state_space' or 'convolution'), got integrator={self.integrator!r}, "
-                f"radiation={self.radiation!r}"
-            )
+        if self.integrator not in ("rk4", "holloway"):
+            raise ValueError(f"integrator must be 'rk4' or 'holloway', got {self.integrator!r}")
         if not (np.isfinite(self.speed) and self.speed >= 0.0):
             raise ValueError(f"speed must be a non-negative speed [m/s], got {self.speed!r}")
         if len(self.free_dofs) != 6:
@@ -231,9 +221,7 @@ def build_force_models(
     models: list[ForceModel] = [FroudeKrylovHydrostatics(hull, wave_field, method=setup.fk_method)]
     omega_roll = roll_natural_frequency(hull, database)
     if setup.radiation in ("state_space", "convolution"):
-        models.append(
-            RadiationMemory(database, method=setup.radiation, dt=setup.dt, lumped=setup.lumped)
-        )
+        models.append(RadiationMemory(database, method=setup.radiation, dt=setup.dt))
     elif setup.radiation in ("2a", "2b"):
         w_e = abs(
             float(encounter_frequency(_peak_frequency(sea), setup.speed, wave_heading, hull.g))
@@ -338,9 +326,8 @@ def build_simulator(
     database = load_database(setup.database)
     wave_field = wave_field_for(sea, wave_heading, rng)
     models, commands = build_force_models(setup, hull, database, wave_field, sea, wave_heading)
-    lumped_a = None
-    if setup.lumped:
-        lumped_a = next(m for m in models if isinstance(m, RadiationMemory)).A_inf
+    from ship_gym.engine.simulator import Simulator
+
     sim = Simulator(
         hull,
         models,
@@ -349,7 +336,6 @@ def build_simulator(
         dt=setup.dt,
         integrator=setup.integrator,
         free_dofs=setup.free_dofs,
-        lumped_added_mass=lumped_a,
     )
     sim.commands = dict(commands)
     eq = equilibrium(hull)
@@ -376,24 +362,9 @@ def trim_shaft_speed(sim: Simulator, speed: float, iterations: int = 4) -> float
     force of every model but the propeller (resistance, rudder drag at the current
     rudder command, hydrostatics + gravity …) is evaluated at ν = (U, 0, 0, 0, 0, 0) and the
     propeller's (1 − t) T(n, (1 − w) U) is matched to it (Brent on n). The rudder's drag depends
-    on the propeller's slipstream, hence a few fixed-point iterations.
+    on the propeller's slipstream, hence a few fixed-point iterations
+    (:func:`ship_gym.engine.batch_control.trim_batch_shaft_speed` on the simulator's engine).
     """
-    prop = propeller_of(sim)
-    saved = sim.nu
-    sim.nu = np.array([float(speed), 0.0, 0.0, 0.0, 0.0, 0.0])
-    n = float(sim.commands.get("shaft_speed", prop.shaft_speed_for(speed)))
-    for _ in range(iterations):
-        sim.commands = {**sim.commands, "shaft_speed": n}
-        breakdown = sim.force_breakdown()
-        others = sum(v[0] for k, v in breakdown.items() if k != prop.name)
+    from ship_gym.engine.batch_control import trim_batch_shaft_speed
 
-        def net(nn: float, others: float = others) -> float:
-            return prop.operating_point(speed, nn).surge_force + others
-
-        hi = 2.0 * n + 0.1
-        while net(hi) < 0.0:
-            hi *= 2.0
-        n = float(brentq(net, 0.0, hi, xtol=1e-12))
-    sim.commands = {**sim.commands, "shaft_speed": n}
-    sim.nu = saved
-    return n
+    return float(trim_batch_shaft_speed(sim.engine, propeller_of(sim), speed, iterations)[0])

@@ -31,7 +31,7 @@ from ship_gym.envs.ship_task import (
     vector_env_docstring,
     write_heading_observations,
 )
-from ship_gym.typing import Precision, RowIntegratorName
+from ship_gym.typing import IntegratorName, Precision
 
 __all__ = ["MAX_EPISODE_STEPS", "CourseKeepingEnv", "CourseKeepingTask", "CourseKeepingVectorEnv"]
 
@@ -61,7 +61,7 @@ class CourseKeepingTask(S175Task):
         max_rudder_increment_deg: float = 5.0,
         physics_dt_s: float = 0.1,
         control_dt_s: float = 0.5,
-        integrator: RowIntegratorName = "holloway",
+        integrator: IntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
         precision: Precision = "float32",
         num_threads: int = 1,

@@ -27,7 +27,7 @@ from ship_gym.envs.ship_task import (
     ship_kwargs,
     vector_env_docstring,
 )
-from ship_gym.typing import Precision, RowIntegratorName
+from ship_gym.typing import IntegratorName, Precision
 
 __all__ = ["MAX_EPISODE_STEPS", "RideControlEnv", "RideControlTask", "RideControlVectorEnv"]
 
@@ -57,7 +57,7 @@ class RideControlTask(ComfortShipTask):
         passenger_point_m: Sequence[float] = (50.0, 0.0, -10.0),
         physics_dt_s: float = 0.05,
         control_dt_s: float = 0.25,
-        integrator: RowIntegratorName = "holloway",
+        integrator: IntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
         precision: Precision = "float32",
         num_threads: int = 1,

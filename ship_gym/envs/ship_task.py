@@ -72,7 +72,7 @@ from ship_gym.conventions import GRAVITY
 from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import BatchedTask, TaskStep
 from ship_gym.envs.registration import max_episode_steps
-from ship_gym.typing import Precision, RowIntegratorName
+from ship_gym.typing import IntegratorName, Precision
 
 if TYPE_CHECKING:
     from ship_gym.engine.batch import BatchSimulator
@@ -1311,7 +1311,7 @@ class S175Task(ShipTask, abc.ABC):
         froude_number: float,
         physics_dt_s: float,
         control_dt_s: float,
-        integrator: RowIntegratorName,
+        integrator: IntegratorName,
         hull_mesh: Sequence[int],
         capsize_angle_deg: float | None,
         dangerous_roll_deg: float,

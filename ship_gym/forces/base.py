@@ -16,9 +16,7 @@ a :class:`ForceContext`.
 
 Kring–Huang–Sclavounos (their eq. 3): the instantaneous (infinite-frequency) added mass is kept on
 the left-hand side of the equations of motion; a model that contributes such a term declares it in
-:attr:`ForceModel.added_mass` and must then *not* include it in its force. Holloway's lumped mode is
-the exception: the model puts −A ν̇ₑ in its force with ν̇ₑ the extrapolated acceleration given in
-the context.
+:attr:`ForceModel.added_mass` and must then *not* include it in its force.
 """
 
 from __future__ import annotations
@@ -49,8 +47,6 @@ class ForceContext:
     wave_phasor : numpy.ndarray or None
         (n,) complex amplitudes cⱼ(t) of the incident components [m], ramp included
         (:meth:`ship_gym.waves.WaveField.phasor`); None in calm water.
-    acceleration_extrapolated : numpy.ndarray or None
-        (6,) extrapolated ν̇ₑ for Holloway's lumped mode, else None.
     commands : dict
         Actuator commands (rudder angle [rad], fin angles [rad], shaft speed [rev/s], …).
     shared : dict
@@ -65,7 +61,6 @@ class ForceContext:
     rotation: np.ndarray
     forward_speed: float = 0.0
     wave_phasor: np.ndarray | None = None
-    acceleration_extrapolated: np.ndarray | None = None
     commands: dict = field(default_factory=dict)
     shared: dict = field(default_factory=dict)
 

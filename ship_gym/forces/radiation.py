@@ -37,9 +37,9 @@ Models
 :class:`RadiationMemory`
     Matusiak's case 1 (memory). ``method="convolution"`` is the reference path (trapezoidal
     convolution over a stored velocity history); ``method="state_space"`` (default) replaces
-    the convolution by a fitted stable linear system integrated with the ship.
-    ``lumped=True`` is Holloway's mode (his eq. 10): −A(∞)ν̇ₑ is put in the force with the
-    extrapolated acceleration ν̇ₑ, and nothing goes to the left-hand side.
+    the convolution by a fitted stable linear system integrated with the ship. A(∞) goes to the
+    left-hand side (:attr:`RadiationMemory.added_mass`; Holloway's alternative of lumping it into
+    the force, his eq. 10, is studied on his oscillator in :mod:`ship_gym.analysis.holloway`).
 :class:`ConstantCoefficientRadiation`
     Matusiak's case 2 (his eq. 13–14): constant A and B, no memory.
 """
@@ -252,9 +252,6 @@ class RadiationMemory(ForceModel):
         High-frequency treatment of B(ω) (:mod:`ship_gym.hydro.retardation`).
     tail_exponent : int or "fit"
         Exponent n of the power tail B ∝ ω⁻ⁿ.
-    lumped : bool
-        Holloway's lumped mode (his eq. 10): :attr:`added_mass` is None and the force also
-        contains −A(∞) ν̇ₑ, ν̇ₑ = ``ctx.acceleration_extrapolated`` (required).
     quadrature : {"filon", "simpson", "trapezoid", "fft"}
         Kernel quadrature (default Filon, Gourlay eq. 4–10).
     kernel_refinement : int
@@ -296,7 +293,6 @@ class RadiationMemory(ForceModel):
         t_max: float = 60.0,
         tail: str = "power",
         tail_exponent: int | str = "fit",
-        lumped: bool = False,
         quadrature: str = "filon",
         kernel_refinement: int = 2,
         fit_options: Mapping[str, Any] | None = None,
@@ -311,9 +307,8 @@ class RadiationMemory(ForceModel):
                 "memory model needs it on the left-hand side"
             )
         self.method: str = method
-        self.lumped: bool = bool(lumped)
         self.A_inf: NDArray[np.float64] = np.array(h.added_mass_infinite, dtype=float)
-        self.added_mass = None if self.lumped else self.A_inf
+        self.added_mass = self.A_inf
         t_max = _check_positive("t_max", t_max)
         self._tol = _check_positive("commit_tolerance", commit_tolerance)
         key_base = (
@@ -546,13 +541,12 @@ class RadiationMemory(ForceModel):
     def evaluate(
         self, ctx: ForceContext, states: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Memory force −μ (plus −A(∞)ν̇ₑ when lumped) and the state derivatives.
+        """Memory force −μ and the state derivatives.
 
         Parameters
         ----------
         ctx : ForceContext
-            Uses ``t`` [s], ``nu`` [m/s, rad/s], ``forward_speed`` [m/s] and, when lumped,
-            ``acceleration_extrapolated`` [m/s², rad/s²].
+            Uses ``t`` [s], ``nu`` [m/s, rad/s] and ``forward_speed`` [m/s].
         states : numpy.ndarray
             (n_states,) memory states z (state-space path; ignored by the convolution).
 
@@ -575,14 +569,6 @@ class RadiationMemory(ForceModel):
             states_dot = self._A @ z + self._B @ v
             if self._has_d:
                 force -= self._D @ v
-        if self.lumped:
-            if ctx.acceleration_extrapolated is None:
-                raise ValueError(
-                    "lumped=True needs ctx.acceleration_extrapolated (Holloway's ν̇ₑ, eq. 6); "
-                    "got None"
-                )
-            acc = _vector6("ctx.acceleration_extrapolated", ctx.acceleration_extrapolated)
-            force = force - self.A_inf @ acc
         return force, states_dot
 
 

@@ -6,6 +6,7 @@ import argparse
 import dataclasses
 import json
 import math
+from types import SimpleNamespace
 from typing import ClassVar
 
 import numpy as np
@@ -140,6 +141,7 @@ class _DivergingSim:
 
     dt = 0.5
     forces: ClassVar[list] = []
+    engine = SimpleNamespace(forces=[], n_ships=1)  # no rudder
 
     def __init__(self) -> None:
         self.t, self.eta, self.nu, self.commands, self.z = 0.0, np.zeros(6), np.zeros(6), {}, []
@@ -310,11 +312,11 @@ def test_engine_divergence_matches_simulator(every):
 
 def test_engine_choice_and_fallback():
     assert cm.engine_supports("state_space", "holloway") and cm.engine_supports("2b", "rk4")
-    assert not cm.engine_supports("convolution", "rk4") and not cm.engine_supports("none", "abm")
+    assert cm.engine_supports("convolution", "rk4") and not cm.engine_supports("none", "abm")
     assert cm.use_engine("auto", "2a", "rk4") and not cm.use_engine("simulator", "2a", "rk4")
-    assert not cm.use_engine("auto", "convolution", "rk4")  # falls back to the Simulator
-    with pytest.raises(NotImplementedError, match="convolution"):
-        cm.use_engine("engine", "convolution", "rk4")
+    assert cm.use_engine("auto", "convolution", "rk4")  # batched, on the numpy path
+    with pytest.raises(ValueError, match="integrator 'rk4' or 'holloway'"):
+        cm.use_engine("engine", "none", "abm")
     with pytest.raises(ValueError, match="engine must be"):
         cm.use_engine("fast", "2a", "rk4")
     cfg = _tiny_config(headings_deg=(90.0,), froude_numbers=(0.2,), seeds=(0, 1))

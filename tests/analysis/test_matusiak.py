@@ -130,8 +130,9 @@ def test_engine_scenario_equals_simulator():
     assert res.row()["engine"] == "compiled"
 
 
-def test_convolution_scenario_falls_back_to_the_simulator():
+def test_convolution_scenario_runs_on_the_numpy_path():
     sc = mt.Scenario(0.3, 30.0, "convolution", duration=0.5)
-    assert mt.run_scenario(sc).engine == "simulator"
-    with pytest.raises(NotImplementedError):
-        mt.run_scenario(sc, engine="engine")
+    res = mt.run_scenario(sc)
+    assert res.engine == "numpy"
+    ref = mt.run_scenario(sc, engine="simulator")
+    np.testing.assert_allclose(res.roll, ref.roll, rtol=0, atol=1e-12)

@@ -1,8 +1,9 @@
 """Vectorised control models (ship_gym.engine.batch_control) against the single-ship ones.
 
 A batch built with the vectorised control models must follow (a) the same batch with every
-control model wrapped per ship in PerShipForceModel and (b) independent single-ship Simulators,
-to rounding, while rudder (autopilot or command), fins and T-foil (command or controller) move.
+control model wrapped per ship in PerShipForceModel (the single-ship models' own code) and (b)
+independent one-ship runs (:class:`Simulator`), to rounding, while rudder (autopilot or
+command), fins and T-foil (command or controller) move.
 """
 
 import numpy as np
@@ -90,7 +91,7 @@ def _run_and_compare(setup, n_steps):
             s.step({key: float(v[i]) for key, v in cmd.items()})
         applied[k] = batch.forces[-1].angle  # the last actuator's servo angle
     single = np.array(
-        [np.concatenate([s.eta, s.nu, s.z, _actuator_states(s).ravel()]) for s in sims]
+        [np.concatenate([s.eta, s.nu, s.z, _actuator_states(s.engine).ravel()]) for s in sims]
     )
     for other, what in ((batch, "vectorised"), (per_ship, "per-ship")):
         state = np.concatenate([other.eta, other.nu, other.z, _actuator_states(other)], axis=1)

@@ -1,7 +1,9 @@
-"""BatchSimulator against N independent single-ship Simulators (same setup, same seas).
+"""BatchSimulator of N ships against N one-ship runs (same setup, same seas), and its row
+models against the single-ship force models they are built from.
 
-The batch engine re-implements the right-hand side and the integrators on arrays with a leading
-ship axis; every ship must follow the trajectory of its own :class:`Simulator` to rounding.
+A ship of a batch must follow the trajectory it has alone (a :class:`Simulator`: the engine with
+one ship) to rounding, whatever the other ships do; the row force models must equal the
+single-ship :class:`ForceModel` implementations evaluated at the same state.
 """
 
 import numpy as np
@@ -14,6 +16,7 @@ from ship_gym.engine.batch import (
 )
 from ship_gym.engine.ship import ShipSetup, build_simulator, wave_field_for
 from ship_gym.forces.base import ForceContext, ForceModel
+from ship_gym.kinematics import rotation_matrix
 from ship_gym.waves.sea_state import IrregularSea
 
 # short ramp so that the waves are fully up within the few hundred steps compared
@@ -102,10 +105,20 @@ def test_force_breakdown_matches_single_models():
     batch.z[:] = [s.z for s in sims]
     got = batch.force_breakdown()
     for i, s in enumerate(sims):
-        for f in s.forces:  # the batch starts with fresh diffraction caches: so does the ship
+        # the single-ship models themselves (ForceModel.evaluate), at the ship's state; the
+        # batch starts with fresh diffraction caches: so does the single model
+        eta, nu, z = s.eta, s.nu, s.z
+        ctx = ForceContext(
+            t=s.t, eta=eta, nu=nu, rotation=rotation_matrix(*eta[3:]),
+            forward_speed=s.forward_speed,
+            wave_phasor=None if s.wave_field is None else s.wave_field.phasor(s.t),
+        )  # fmt: skip
+        ref, start = {}, 0
+        for f in s.forces:
             if f.name == "diffraction":
-                f.reset(s.t, None)
-        ref = s.force_breakdown()
+                f.reset(s.t, ctx)
+            ref[f.name], _ = f.evaluate(ctx, z[start : start + f.n_states])
+            start += f.n_states
         for name in ("froude_krylov_hydrostatic", "radiation", "viscous_roll"):
             np.testing.assert_allclose(got[name][i], ref[name], rtol=1e-12, atol=1e-9)
         if "diffraction" in ref:
@@ -216,10 +229,11 @@ def test_divergence_is_per_ship_and_commands_reach_models():
 
 def test_unsupported_setups_and_bad_resets_raise():
     field = wave_field_for(SEA_SMALL, np.pi, np.random.default_rng(0))
-    with pytest.raises(NotImplementedError, match="state-space"):
-        build_batch_simulator(ShipSetup(radiation="convolution"), [field])
-    with pytest.raises(NotImplementedError, match="abm"):
-        build_batch_simulator(ShipSetup(integrator="abm"), [field])
+    conv = build_batch_simulator(ShipSetup(radiation="convolution"), [field, None])
+    assert not conv.compiled  # the Cummins convolution runs per ship on the numpy path
+    assert isinstance(next(f for f in conv.forces if f.name == "radiation"), PerShipForceModel)
+    with pytest.raises(ValueError, match="integrator must be 'rk4' or 'holloway'"):
+        ShipSetup(integrator="abm")
     batch = build_batch_simulator(ShipSetup(), [field, None])
     big = wave_field_for(SEA, np.pi, np.random.default_rng(1))
     with pytest.raises(ValueError, match="max_components"):

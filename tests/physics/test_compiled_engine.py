@@ -147,7 +147,7 @@ def test_bad_commands_are_refused_before_any_step():
     setup = ShipSetup(speed=8.0, propulsion=True, manoeuvring=True, rudder="autopilot")
     sim = build_batch_simulator(setup, _fields(2), backend="compiled")
     eta = sim.eta.copy()
-    with pytest.raises(ValueError, match="'heading'.*finite"):
+    with pytest.raises(ValueError, match=r"'heading'.*finite"):
         sim.advance(3, {"heading": np.array([0.1, np.nan])})
     with pytest.raises(ValueError, match=r"'shaft_speed'.*\(N,\)"):
         sim.advance(3, {"shaft_speed": np.ones(3), "heading": np.zeros(2)})

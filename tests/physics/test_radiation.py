@@ -59,7 +59,7 @@ def ss(db):
     return RadiationMemory(db, method="state_space")
 
 
-def make_ctx(t, v, speed=0.0, acc=None):
+def make_ctx(t, v, speed=0.0):
     nu = np.array(v, dtype=float)
     nu[0] += speed
     return ForceContext(
@@ -68,7 +68,6 @@ def make_ctx(t, v, speed=0.0, acc=None):
         nu=nu,
         rotation=np.eye(3),
         forward_speed=speed,
-        acceleration_extrapolated=acc,
     )
 
 
@@ -217,26 +216,6 @@ def test_convolution_uses_the_current_stage_velocity(conv01):
 
 
 # ------------------------------------------------------------------------------ modes, errors
-@pytest.mark.parametrize("method", ["convolution", "state_space"])
-def test_lumped_mode_adds_exactly_minus_a_inf_times_extrapolated_acceleration(db, method):
-    lumped = RadiationMemory(db, method=method, dt=0.1, lumped=True)
-    plain = RadiationMemory(db, method=method, dt=0.1)
-    assert lumped.added_mass is None
-    np.testing.assert_array_equal(plain.added_mass, plain.A_inf)
-    rng = np.random.default_rng(7)
-    v, acc = rng.normal(size=6), rng.normal(size=6)
-    z = rng.normal(size=lumped.n_states)
-    for m in (lumped, plain):
-        m.reset(0.0, make_ctx(0.0, v))
-        m.commit(make_ctx(0.1, v), z)
-    f_l, zd_l = lumped.evaluate(make_ctx(0.15, v, acc=acc), z)
-    f_p, zd_p = plain.evaluate(make_ctx(0.15, v, acc=acc), z)
-    np.testing.assert_allclose(f_l - f_p, -lumped.A_inf @ acc, rtol=1e-12)
-    np.testing.assert_array_equal(zd_l, zd_p)
-    with pytest.raises(ValueError, match="acceleration_extrapolated"):
-        lumped.evaluate(make_ctx(0.15, v), z)
-
-
 def test_state_space_derivatives_and_forward_speed(ss):
     """ż = A z + B ν_p and F = −C z with ν_p = ν − (U, 0, …): a ship at U has no memory input."""
     sys = ss.state_space

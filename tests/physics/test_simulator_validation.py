@@ -20,7 +20,7 @@ What is checked (the issue's items), and against what:
    calm-water restoring (1-DOF and GZ curve), and the static heel under a heeling moment
    against the GZ curve, far beyond deck-edge immersion (≈ 25°).
 5. Convolution against state-space radiation memory in an irregular sea, at two time steps.
-6. RK4, Adams–Bashforth–Moulton and Holloway (plain and lumped) integrators against each other.
+6. RK4 and Holloway integrators against each other (orders of convergence).
 
 Conventions: capytaine's x(t) = Re(ξ a e^{−iωt}) for complex amplitudes (the wave crest at O at
 t = 0, :mod:`ship_gym.hydro.rao`); body axes about O, z down.
@@ -877,10 +877,10 @@ def test_convolution_and_state_space_agree(dt):
 
 # ============================================================================ 6. integrators
 @functools.cache
-def integrator_run(integrator: str, dt: float, lumped: bool = False) -> SimulationResult:
+def integrator_run(integrator: str, dt: float) -> SimulationResult:
     # Regular wave H = 2 m, T = 9 s at 135° (20 s ramp), full default force set, surge/sway/yaw
     # held, 60 s.
-    setup = ShipSetup(integrator=integrator, dt=dt, lumped=lumped, free_dofs=HOLD_HORIZONTAL)
+    setup = ShipSetup(integrator=integrator, dt=dt, free_dofs=HOLD_HORIZONTAL)
     wave = RegularWave(2.0, period=9.0, ramp_time=20.0)
     sim = build_simulator(setup, wave, wave_heading=np.radians(135.0))
     return sim.run(60.0, record_every=round(0.1 / dt))
@@ -898,25 +898,19 @@ def relative_rms_difference(a: SimulationResult, b: SimulationResult) -> np.ndar
 
 
 def test_integrators_agree():
-    # Reference RK4 at Δt = 0.05 s (RK4 at 0.1 s differs by 1e-6). ABM4-PECE is fourth order
-    # too: 1e-4 (measured 2.3e-7). Holloway's μ-Taylor scheme is second order (global error
-    # O(Δt²)): 0.5 % (measured 0.17 % with the simulator's default μ = m/(m + A∞), applied here
-    # to an exact acceleration; ≈ 5 times less with μ = 1). Holloway lumped (A(∞) ν̇ₑ in the
-    # force, μ = m/(m + A∞)): stable and within a looser 1 % (measured 0.046 %).
+    # Reference RK4 at Δt = 0.05 s. RK4 is fourth order: at 0.1 s within 1e-5 (measured
+    # ≈ 1e-6). Holloway's μ-Taylor scheme is second order (global error O(Δt²)): 0.5 % at
+    # 0.05 s (μ = 1: the acceleration is exact, the added mass being on the left).
     ref = integrator_run("rk4", 0.05)
-    assert relative_rms_difference(integrator_run("abm", 0.05), ref).max() < 1e-4
+    assert relative_rms_difference(integrator_run("rk4", 0.1), ref).max() < 1e-5
     assert relative_rms_difference(integrator_run("holloway", 0.05), ref).max() < 5e-3
-    lumped = integrator_run("holloway", 0.05, lumped=True)
-    assert np.all(np.isfinite(lumped.eta))
-    assert relative_rms_difference(lumped, ref).max() < 1e-2
 
 
 @pytest.mark.slow
 def test_holloway_is_second_order():
     # Halving Δt from 0.1 to 0.05 s divides the difference from the RK4 reference by 4 ± 1 for
-    # Holloway's scheme, plain and lumped (measured 4.0–4.2): second order, as documented.
+    # Holloway's scheme (measured 4.0–4.2): second order, as documented.
     ref = integrator_run("rk4", 0.05)
-    for lump in (False, True):
-        e1 = relative_rms_difference(integrator_run("holloway", 0.1, lumped=lump), ref)
-        e2 = relative_rms_difference(integrator_run("holloway", 0.05, lumped=lump), ref)
-        assert np.all((e1 / e2 > 3.0) & (e1 / e2 < 5.0)), f"lumped={lump}: ratios {e1 / e2}"
+    e1 = relative_rms_difference(integrator_run("holloway", 0.1), ref)
+    e2 = relative_rms_difference(integrator_run("holloway", 0.05), ref)
+    assert np.all((e1 / e2 > 3.0) & (e1 / e2 < 5.0)), f"ratios {e1 / e2}"
