@@ -11,8 +11,11 @@ the same run:
   Froude–Krylov kernel with float32 wave sums) on the 1500-face mesh (``MESH_1500``); also
   with float64 wave sums and on the default 2400-face mesh;
 * **reference path**: :class:`Simulator` with direct convolution of the retardation functions
-  and the numpy Froude–Krylov reference (``fk_method="reference"``), Holloway, same meshes;
-* the Simulator/BatchSimulator paths (Python-level stepping) as before, RK4 and Holloway.
+  and the numpy Froude–Krylov reference (``fk_method="reference"``), Holloway, same meshes (the
+  convolution has no compiled version: the engine's numpy path);
+* one ship on the engine's two paths (a :class:`Simulator` is the engine with N = 1), RK4 and
+  Holloway, default mesh: the numpy path (``backend="numpy"``: the row models stepped from
+  Python) against the compiled backend (K steps per numba call), and the reference path.
 
 The compiled-path ships start at t = 60 s, after the sea's 50 s ramp, so that they are timed in
 the full sea. Printed (and written with ``--json PATH``; the headline keys
@@ -31,11 +34,12 @@ the full sea. Printed (and written with ``--json PATH``; the headline keys
 * the cost of the memory term relative to constant coefficients (Matusiak case 2b), compiled;
 * the accuracy cost of the 1500-face mesh: GZ curve and heave/roll/pitch natural periods from
   free decays, against 2400 and 9600 faces;
-* the Simulator tables (RK4/Holloway real-time factors, per-model cost split, memory vs 2b,
-  integrator accuracy against RK4 at dt/2);
+* the single-ship tables (RK4/Holloway real-time factors of both paths, the per-model cost
+  split on the numpy path from the engine's timers ``engine.timings``, memory vs 2b on both
+  paths, integrator accuracy against RK4 at dt/2);
 * throughput (ship-steps/s) of :class:`ship_gym.engine.batch.BatchSimulator` for 1, 16 and 64
-  ships, of independent :class:`Simulator` objects, and, with the fast path's settings, of
-  BatchSimulator and of N CompiledShips stepped in turn.
+  ships on both paths, of 16 compiled :class:`Simulator` objects stepped in turn, and, with the
+  fast path's settings, of a compiled BatchSimulator and of N CompiledShips stepped in turn.
 
 Threads: ``NUMBA_NUM_THREADS``, ``OMP_NUM_THREADS``, ``OPENBLAS_NUM_THREADS`` and
 ``MKL_NUM_THREADS`` are set to 1 *before* numpy and numba are imported (no threadpoolctl in the
@@ -67,7 +71,11 @@ from pathlib import Path  # noqa: E402
 import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ship_gym.engine.batch import BatchSimulator, build_batch_simulator  # noqa: E402
+from ship_gym.engine.batch import (  # noqa: E402
+    BatchSimulator,
+    EngineBackend,
+    build_batch_simulator,
+)
 from ship_gym.engine.compiled import CompiledShip, build_compiled_ship  # noqa: E402
 from ship_gym.engine.ship import ShipSetup, build_simulator, wave_field_for  # noqa: E402
 from ship_gym.engine.simulator import Simulator  # noqa: E402
@@ -103,10 +111,33 @@ def _sim(
     sea: IrregularSea = SEA,
     dt: float = DT,
     heading: float = HEADING,
+    backend: EngineBackend = "auto",
 ) -> Simulator:
-    return build_simulator(
+    """The S175 of a path (``build_simulator``) on the engine's ``backend``.
+
+    ``build_simulator`` picks the compiled backend when every model has a compiled version (the
+    reference path's convolution has none: numpy path). Another backend means a new
+    :class:`Simulator` from the same force models, at the same state and commands.
+    """
+    sim = build_simulator(
         _setup(path, integrator, dt), sea, wave_heading=heading, rng=np.random.default_rng(seed)
     )
+    on_it = sim.engine.compiled if backend == "compiled" else not sim.engine.compiled
+    if backend == "auto" or on_it:
+        return sim
+    out = Simulator(
+        sim.hull,
+        sim.forces,
+        wave_field=sim.wave_field,
+        forward_speed=sim.forward_speed,
+        dt=sim.dt,
+        integrator=sim.integrator_name,
+        free_dofs=sim.free,
+        backend=backend,
+    )
+    out.commands = sim.commands
+    out.reset(eta=sim.eta, nu=sim.nu, t0=sim.t)
+    return out
 
 
 def _interleaved(jobs: dict[str, tuple[Callable[[], None], int]], rounds: int) -> dict[str, float]:
@@ -124,88 +155,26 @@ def _interleaved(jobs: dict[str, tuple[Callable[[], None], int]], rounds: int) -
     return {k: float(np.min(v)) for k, v in times.items()}
 
 
-def _stepper(sim, n: int) -> Callable[[], None]:
-    def block() -> None:
-        for _ in range(n):
-            sim.step()
+def _cost_split(engine: BatchSimulator, n_steps: int, blocks: int = 5) -> dict[str, object]:
+    """Time per evaluation of each force model and its share of a step, on the numpy path.
 
-    return block
-
-
-def _cost_split(sim: Simulator, n_steps: int, blocks: int = 5) -> dict[str, object]:
-    """Time per evaluation of each force model and its share of a step.
-
-    Each model's ``evaluate`` is wrapped (then restored) during ``blocks`` blocks of
-    ``n_steps`` real steps; the fastest block (least disturbed by other processes) is reported.
-    The rest of the step (context, gravity, Coriolis, kinematics, integrator, Python) is
-    ``rigid_body_integrator_overhead``.
+    The engine's own per-model timers (``engine.timings = {}``) during ``blocks`` blocks of
+    ``n_steps`` steps of :meth:`BatchSimulator.step` (the numpy path whatever the backend; the
+    compiled backend runs every model in one numba call: see
+    :meth:`CompiledShip.term_costs`); the fastest block (least disturbed by other processes) is
+    reported. The rest of the step (context, gravity, Coriolis, kinematics, integrator, Python)
+    is ``rigid_body_integrator_overhead``.
     """
-    spent: dict[str, float] = {}
-    calls: dict[str, int] = {}
-    for f in sim.forces:
-
-        def timed(ctx, states, _ev=f.evaluate, _name=f.name):
-            t0 = time.perf_counter()
-            out = _ev(ctx, states)
-            spent[_name] += time.perf_counter() - t0
-            calls[_name] += 1
-            return out
-
-        f.evaluate = timed  # type: ignore[method-assign]
     best: dict[str, object] | None = None
-    try:
-        for _ in range(blocks):
-            for f in sim.forces:
-                spent[f.name], calls[f.name] = 0.0, 0
-            t0 = time.perf_counter()
-            for _ in range(n_steps):
-                sim.step()
-            step = (time.perf_counter() - t0) / n_steps
-            if best is None or step * 1e6 < best["step_us"]:  # type: ignore[operator]
-                evals = max(calls.values()) / n_steps
-                per_eval = {k: spent[k] / max(calls[k], 1) for k in spent}
-                percent = {k: 100.0 * spent[k] / n_steps / step for k in spent}
-                percent["rigid_body_integrator_overhead"] = 100.0 - sum(percent.values())
-                best = {
-                    "step_us": step * 1e6,
-                    "evaluations_per_step": evals,
-                    "per_evaluation_us": {k: v * 1e6 for k, v in per_eval.items()},
-                    "percent_of_step": percent,
-                }
-    finally:
-        for f in sim.forces:
-            del f.evaluate  # back to the class method
-    assert best is not None
-    return best
-
-
-def _paired_ratio(a, b, n_steps: int, rounds: int) -> float:
-    """Median over rounds of (time of n_steps of a) / (time of n_steps of b), run back to back."""
-    ratios = []
-    for _ in range(rounds):
+    for _ in range(blocks):
+        engine.timings = {}
         t0 = time.perf_counter()
         for _ in range(n_steps):
-            a.step()
-        t1 = time.perf_counter()
-        for _ in range(n_steps):
-            b.step()
-        t2 = time.perf_counter()
-        ratios.append((t1 - t0) / (t2 - t1))
-    return float(np.median(ratios))
-
-
-def _batch_cost_split(batch: BatchSimulator, n_steps: int) -> dict[str, object]:
-    """The same split for a BatchSimulator (its built-in per-model timers; fastest of blocks)."""
-    best: dict[str, object] | None = None
-    for _ in range(5):
-        batch.timings = {}
-        t0 = time.perf_counter()
-        for _ in range(n_steps):
-            batch.step()
+            engine.step()
         step = (time.perf_counter() - t0) / n_steps
         if best is None or step < best["step_us"] * 1e-6:  # type: ignore[operator]
-            evals = batch.evaluations_per_step
-            per_eval = {k: v / n_steps / evals for k, v in batch.timings.items()}
+            evals = engine.evaluations_per_step
+            per_eval = {k: v / n_steps / evals for k, v in engine.timings.items()}
             percent = {k: 100.0 * v * evals / step for k, v in per_eval.items()}
             percent["rigid_body_integrator_overhead"] = 100.0 - sum(percent.values())
             best = {
@@ -214,9 +183,23 @@ def _batch_cost_split(batch: BatchSimulator, n_steps: int) -> dict[str, object]:
                 "per_evaluation_us": {k: v * 1e6 for k, v in per_eval.items()},
                 "percent_of_step": percent,
             }
-    batch.timings = None
+    engine.timings = None
     assert best is not None
     return best
+
+
+def _paired_ratio(a, b, n_steps: int, rounds: int) -> float:
+    """Median over rounds of (time of ``a.advance(n_steps)``) / (time of ``b.advance(n_steps)``),
+    run back to back."""
+    ratios = []
+    for _ in range(rounds):
+        t0 = time.perf_counter()
+        a.advance(n_steps)
+        t1 = time.perf_counter()
+        b.advance(n_steps)
+        t2 = time.perf_counter()
+        ratios.append((t1 - t0) / (t2 - t1))
+    return float(np.median(ratios))
 
 
 # ============================================================================ compiled fast path
@@ -254,7 +237,9 @@ def _compiled(mesh: str, precision: str, **setup_kw) -> CompiledShip:
     return ship
 
 
-def _advancer(ship: CompiledShip, n: int) -> Callable[[], None]:
+def _advancer(ship: CompiledShip | BatchSimulator | Simulator, n: int) -> Callable[[], None]:
+    """A block of ``n`` steps in one ``advance`` call (one compiled call on that backend)."""
+
     def block() -> None:
         ship.advance(n)
 
@@ -375,12 +360,11 @@ def _compiled_section(quick: bool, rounds: int) -> dict:
     for s in ships.values():
         s.advance(warm)
     for r in refs.values():
-        for _ in range(3 if quick else 6):
-            r.step()
+        r.advance(3 if quick else 6)
     n_fast = 20 if quick else 100
     n_ref = 1 if quick else 3
     jobs = {f"compiled {p} {m}": (_advancer(s, n_fast), n_fast) for (m, p), s in ships.items()}
-    jobs |= {f"reference {m}": (_stepper(r, n_ref), n_ref) for m, r in refs.items()}
+    jobs |= {f"reference {m}": (_advancer(r, n_ref), n_ref) for m, r in refs.items()}
     times = _timed(jobs, rounds)
     rtf = {k: {c: DT / v[c] for c in ("wall", "cpu")} for k, v in times.items()}
 
@@ -502,9 +486,8 @@ def _accuracy(duration: float) -> dict[str, dict[str, float]]:
     """RMS error of heave, roll, pitch vs RK4 at dt/2, relative to the RMS motion.
 
     Same sea as the reference case but bow-quartering (β = 135°, so that roll is excited) and a
-    10 s ramp. ``holloway_mu1``: Holloway with μ = 1 (the computed acceleration unblended,
-    :class:`HollowayIntegrator`'s advice for an exact acceleration) instead of the
-    simulator's default μ = m/(m + A∞).
+    10 s ramp. Holloway runs with the engine's μ = 1 (the computed acceleration unblended, the
+    added mass being on the left-hand side).
     """
     sea = IrregularSea(hs=5.0, tp=11.0, n_components=50, ramp_time=10.0)
     beta = np.radians(135.0)
@@ -515,17 +498,6 @@ def _accuracy(duration: float) -> dict[str, dict[str, float]]:
         "rk4": _sim("fast", "rk4", sea=sea, heading=beta),
         "holloway": _sim("fast", "holloway", sea=sea, heading=beta),
     }
-    src = _sim("fast", "holloway", sea=sea, heading=beta)
-    mu1 = Simulator(
-        src.hull,
-        src.forces,
-        wave_field=src.wave_field,
-        dt=DT,
-        integrator="holloway",
-        mu=np.ones(6),
-    )
-    mu1.reset(eta=src.eta.copy())
-    candidates["holloway_mu1"] = mu1
     for name, sim in candidates.items():
         try:
             eta = sim.run(duration).eta
@@ -540,9 +512,11 @@ def _accuracy(duration: float) -> dict[str, dict[str, float]]:
     return out
 
 
-def _batch(n_ships: int, integrator: str, fast_mesh: bool = False) -> BatchSimulator:
-    """BatchSimulator of the Simulator fast path, or (``fast_mesh``) with the compiled fast
-    path's mesh and float32 wave sums."""
+def _batch(
+    n_ships: int, integrator: str, fast_mesh: bool = False, backend: EngineBackend = "auto"
+) -> BatchSimulator:
+    """BatchSimulator of the single-ship fast setup (default mesh, float64 wave sums), or
+    (``fast_mesh``) with the compiled fast path's mesh and float32 wave sums, on ``backend``."""
     fields = [wave_field_for(SEA, HEADING, np.random.default_rng(seed)) for seed in range(n_ships)]
     setup = _setup("fast", integrator)
     if fast_mesh:
@@ -552,7 +526,7 @@ def _batch(n_ships: int, integrator: str, fast_mesh: bool = False) -> BatchSimul
             integrator=integrator,  # type: ignore[arg-type]
             hull_overrides=dict(MESHES[FAST_MESH]),
         )
-    return build_batch_simulator(setup, fields)
+    return build_batch_simulator(setup, fields, backend=backend)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -655,93 +629,108 @@ def main(argv: list[str] | None = None) -> int:
             + ", ".join(f"{k} {per[k]:.2f} s ({100 * rel[k]:+.2f} %)" for k in per)
         )
 
-    # ------------------------------------------------------------- single ship, both paths
-    paths = ("fast", "reference", "2b")
-    sims = {(path, integ): _sim(path, integ) for path in paths for integ in INTEGRATORS}
-    for sim in sims.values():
-        for _ in range(warm):  # compilation, Holloway start-up, convolution history
-            sim.step()
-    fk = sims[("fast", "rk4")].forces[0]
-    n_faces = int(fk.hull.mesh.faces.shape[0])
-    # blocks of similar wall time (≈ 0.1 s), so that each variant has the same chance of an
-    # undisturbed block
-    block = {
-        "fast": 10 if quick else 40,
-        "reference": 1 if quick else 4,
-        "2b": 10 if quick else 40,
+    # ------------------------------------------------------------- one ship, both engine paths
+    # the default mesh: the engine's numpy path (row models stepped from Python) against its
+    # compiled backend (K steps in one numba call); the reference path (convolution memory) has
+    # no compiled version and runs on the numpy path
+    variants = {
+        "fast/numpy": ("fast", "numpy"),
+        "fast/compiled": ("fast", "compiled"),
+        "reference/numpy": ("reference", "numpy"),
+        "2b/numpy": ("2b", "numpy"),
+        "2b/compiled": ("2b", "compiled"),
     }
+    sims = {
+        (v, integ): _sim(path, integ, backend=backend)  # type: ignore[arg-type]
+        for v, (path, backend) in variants.items()
+        for integ in INTEGRATORS
+    }
+    for sim in sims.values():
+        sim.advance(warm)  # compilation, Holloway start-up, convolution history
+    n_faces = int(sims[("fast/numpy", DEFAULT_INTEGRATOR)].hull.mesh.faces.shape[0])
+    # blocks of similar wall time (≈ 0.1 s), so that each variant has the same chance of an
+    # undisturbed block; Holloway: 4× the steps (1 evaluation per step instead of 4)
+    block = {
+        "fast/numpy": 10 if quick else 40,
+        "fast/compiled": 20 if quick else 100,
+        "reference/numpy": 1 if quick else 4,
+        "2b/numpy": 10 if quick else 40,
+        "2b/compiled": 20 if quick else 100,
+    }
+    step: dict[str, float] = {}
     for integ in INTEGRATORS:
-        if integ == "holloway":
-            block = {k: 4 * v for k, v in block.items()}
-        jobs = {f"{p}/{integ}": (_stepper(sims[(p, integ)], block[p]), block[p]) for p in block}
-        if integ == "rk4":
-            step_rk4 = _interleaved(jobs, rounds)
-        else:
-            step_hol = _interleaved(jobs, rounds)
-    step = {**step_rk4, **step_hol}
-    rtf = {integ: {p: DT / step[f"{p}/{integ}"] for p in block} for integ in INTEGRATORS}
+        per = 4 if integ == "holloway" else 1
+        jobs = {
+            f"{v}/{integ}": (_advancer(sims[(v, integ)], per * n), per * n)
+            for v, n in block.items()
+        }
+        step |= _interleaved(jobs, rounds)
+    rtf = {integ: {v: DT / step[f"{v}/{integ}"] for v in variants} for integ in INTEGRATORS}
 
     print()
     print(
-        f"Simulator paths (Python-level stepping), default mesh {n_faces} faces: real-time "
-        "factor (wall)"
+        f"one ship on the engine, default mesh {n_faces} faces: real-time factor (wall), numpy "
+        "path (Python-level stepping) vs compiled backend (one call per block)"
     )
-    print(f"  {'integrator':10s} {'fast':>9s} {'reference':>10s} {'speed-up':>9s} {'2b':>9s}")
+    print(
+        f"  {'integrator':10s} {'fast numpy':>10s} {'compiled':>9s} {'ratio':>7s} "
+        f"{'reference':>10s} {'numpy/ref':>9s} {'2b numpy':>9s} {'compiled':>9s}"
+    )
     for integ in INTEGRATORS:
         r = rtf[integ]
         print(
-            f"  {integ:10s} {r['fast']:9.1f} {r['reference']:10.2f} "
-            f"{r['fast'] / r['reference']:8.1f}× {r['2b']:9.1f}"
+            f"  {integ:10s} {r['fast/numpy']:10.1f} {r['fast/compiled']:9.1f} "
+            f"{r['fast/compiled'] / r['fast/numpy']:6.1f}× {r['reference/numpy']:10.2f} "
+            f"{r['fast/numpy'] / r['reference/numpy']:8.1f}× {r['2b/numpy']:9.1f} "
+            f"{r['2b/compiled']:9.1f}"
         )
+    print(
+        "  (ratio: compiled / numpy; numpy/ref: fast setup / reference path, both on the numpy "
+        "path; reference = convolution memory + numpy Froude–Krylov reference)"
+    )
     print(f"  default integrator: {DEFAULT_INTEGRATOR} (see the accuracy table below)")
 
     # ------------------------------------------------------------- cost split by force
     print()
-    print("cost split of a step (µs per evaluation; % of the step)")
+    print("cost split of a step on the numpy path (engine.timings; µs per evaluation; % of step)")
     splits = {}
     for path in ("fast", "reference"):
         for integ in INTEGRATORS:
             n = (20 if path == "fast" else 4) * (4 if integ == "holloway" else 1)
             n = max(2, n // 4) if quick else n
-            splits[f"{path}/{integ}"] = s = _cost_split(sims[(path, integ)], n)
-            _print_split(f"Simulator {path} {integ}", s)
-    for integ in INTEGRATORS:
-        b1 = _batch(1, integ)
-        for _ in range(3):
-            b1.step()
-        n = (5 if quick else 20) * (4 if integ == "holloway" else 1)
-        splits[f"batch1/{integ}"] = s = _batch_cost_split(b1, n)
-        _print_split(f"BatchSimulator(N=1) {integ}", s)
+            splits[f"{path}/{integ}"] = s = _cost_split(sims[(f"{path}/numpy", integ)].engine, n)
+            _print_split(f"{path} {integ}", s)
+    print("  (the compiled backend's split by term: 'cost split of the fast path's step' above)")
 
     # ------------------------------------------------------------- memory vs constant coeffs
     memory_ratio = {
-        integ: _paired_ratio(
-            sims[("fast", integ)],
-            sims[("2b", integ)],
-            (5 if quick else 20) * (4 if integ == "holloway" else 1),
+        f"{backend}/{integ}": _paired_ratio(
+            sims[(f"fast/{backend}", integ)],
+            sims[(f"2b/{backend}", integ)],
+            block[f"fast/{backend}"] // 2 * (4 if integ == "holloway" else 1),
             5 if quick else 15,
         )
+        for backend in ("numpy", "compiled")
         for integ in INTEGRATORS
     }
     rad = {
         k: splits[f"{k}/rk4"]["per_evaluation_us"]["radiation"]  # type: ignore[index]
         for k in ("fast", "reference")
     }
-    split_2b = _cost_split(sims[("2b", "rk4")], 5 if quick else 20)
+    split_2b = _cost_split(sims[("2b/numpy", "rk4")].engine, 5 if quick else 20)
     rad_2b = split_2b["per_evaluation_us"]["radiation"]  # type: ignore[index]
     # the same ratio from the per-evaluation costs: 2b step with the radiation model swapped
     component_ratio = 1.0 + 4.0 * (rad["fast"] - rad_2b) / split_2b["step_us"]  # type: ignore[operator]
     print()
-    print("memory term vs constant coefficients (case 2b), fast path")
-    for integ in INTEGRATORS:
+    print("memory term vs constant coefficients (case 2b), fast setup, default mesh")
+    for key, value in memory_ratio.items():
         print(
-            f"  {integ:8s}: step time memory / 2b = {memory_ratio[integ]:.3f} "
-            "(median of back-to-back block pairs)"
+            f"  {key:18s}: step time memory / 2b = {value:.3f} (median of back-to-back block pairs)"
         )
     print(
-        f"  radiation model per evaluation: state-space {rad['fast']:.1f} µs, convolution "
-        f"{rad['reference']:.1f} µs, 2b {rad_2b:.1f} µs; from these, rk4 memory / 2b = "
-        f"{component_ratio:.3f}"
+        f"  radiation model per evaluation (numpy path): state-space {rad['fast']:.1f} µs, "
+        f"convolution {rad['reference']:.1f} µs, 2b {rad_2b:.1f} µs; from these, rk4 memory / "
+        f"2b = {component_ratio:.3f}"
     )
 
     # ------------------------------------------------------------- accuracy of the schemes
@@ -757,52 +746,66 @@ def main(argv: list[str] | None = None) -> int:
 
     # ------------------------------------------------------------- batched throughput
     print()
-    print("batched throughput, fast path (ship-steps / s)")
+    print(
+        f"batched throughput, fast setup (default mesh {n_faces} faces, float64 wave sums), "
+        "ship-steps / s (wall)"
+    )
     sizes = (1, 4) if quick else (1, 16, 64)
+    n_single = sizes[-2] if len(sizes) > 2 else sizes[-1]
     throughput: dict[str, dict[str, float]] = {}
     for integ in INTEGRATORS:
         jobs = {}
-        for n_ships in sizes:
-            b = _batch(n_ships, integ)
-            for _ in range(3):  # compile + Holloway start-up
-                b.step()
-            steps = max(1, (64 if integ == "holloway" else 16) // n_ships)
-            steps = max(1, steps // 4) if quick else steps
-            jobs[str(n_ships)] = (_stepper(b, steps), steps * n_ships)
-        n_single = sizes[-2] if len(sizes) > 2 else sizes[-1]
-        singles = [_sim("fast", integ, seed) for seed in range(n_single)]
+        steps_of: dict[str, int] = {}
+        for backend in ("numpy", "compiled"):
+            for n_ships in sizes:
+                b = _batch(n_ships, integ, backend=backend)  # type: ignore[arg-type]
+                b.advance(3)  # compile + Holloway start-up
+                steps = max(1, (64 if integ == "holloway" else 16) // n_ships)
+                steps *= 4 if backend == "compiled" else 1
+                steps = max(1, steps // 4) if quick else steps
+                steps_of[f"{backend} {n_ships}"] = steps
+                jobs[f"{backend} {n_ships}"] = (_advancer(b, steps), steps * n_ships)
+        singles = [_sim("fast", integ, seed, backend="compiled") for seed in range(n_single)]
         for s in singles:
-            for _ in range(3):
-                s.step()
+            s.advance(3)
+        per_single = steps_of[f"compiled {n_single}"]
 
-        def all_singles(singles=singles) -> None:
+        def all_singles(singles=singles, n=per_single) -> None:
             for s in singles:
-                s.step()
+                s.advance(n)
 
-        jobs[f"{n_single}x single"] = (all_singles, n_single)
+        jobs[f"{n_single} x Simulator"] = (all_singles, n_single * per_single)
         per = _interleaved(jobs, rounds)
         throughput[integ] = {k: 1.0 / v for k, v in per.items()}
-        print(f"  {integ:8s} " + ", ".join(f"{k}: {v:7.0f}" for k, v in throughput[integ].items()))
-    ratio = (
-        throughput["rk4"][str(sizes[-2] if len(sizes) > 2 else sizes[-1])]
-        / throughput["rk4"][f"{n_single}x single"]
+        for backend in ("numpy", "compiled"):
+            print(
+                f"  {integ:8s} BatchSimulator(N) {backend:8s} "
+                + ", ".join(f"{n}: {throughput[integ][f'{backend} {n}']:7.0f}" for n in sizes)
+            )
+        print(
+            f"  {integ:8s} {n_single} × Simulator (compiled, in turn): "
+            f"{throughput[integ][f'{n_single} x Simulator']:7.0f}"
+        )
+    tp = throughput[DEFAULT_INTEGRATOR]
+    print(
+        f"  {DEFAULT_INTEGRATOR}: compiled batch of {n_single} vs {n_single} Simulators in turn "
+        f"{tp[f'compiled {n_single}'] / tp[f'{n_single} x Simulator']:.2f}×; compiled vs numpy "
+        f"batch of {sizes[-1]} {tp[f'compiled {sizes[-1]}'] / tp[f'numpy {sizes[-1]}']:.2f}×"
     )
-    print(f"  batch of {n_single} vs {n_single} single simulators (rk4): {ratio:.2f}×")
-    # the fast path's settings (Holloway, float32 wave sums, 1500 faces): BatchSimulator with
-    # N ships, and N CompiledShips stepped one after the other (ship-steps / s, wall and CPU)
+    # the fast path's settings (Holloway, float32 wave sums, 1500 faces): a compiled
+    # BatchSimulator with N ships (one call for all), and N CompiledShips stepped one after the
+    # other (ship-steps / s, wall and CPU)
     jobs = {}
     for n_ships in sizes:
-        b = _batch(n_ships, "holloway", fast_mesh=True)
-        for _ in range(3):
-            b.step()
-        steps = max(1, 64 // n_ships)
-        steps = max(1, steps // 4) if quick else steps
-        jobs[f"batch {n_ships}"] = (_stepper(b, steps), steps * n_ships)
+        b = _batch(n_ships, "holloway", fast_mesh=True, backend="compiled")
+        b.advance(3)
+        steps = max(1, (64 if quick else 256) // n_ships)
+        jobs[f"batch {n_ships}"] = (_advancer(b, steps), steps * n_ships)
     compiled_ships = [_compiled(FAST_MESH, FAST_PRECISION) for _ in range(sizes[-1])]
     for c in compiled_ships:
         c.advance(3)
     for n_ships in sizes:
-        per_ship = max(1, 64 // n_ships)
+        per_ship = max(1, (64 if quick else 256) // n_ships)
 
         def all_compiled(ships=compiled_ships[:n_ships], n=per_ship) -> None:
             for c in ships:
@@ -815,8 +818,8 @@ def main(argv: list[str] | None = None) -> int:
         for kind in ("batch", "compiled")
     }
     print(
-        f"  fast-path settings (holloway, {FAST_PRECISION}, {FAST_MESH} faces), ship-steps / s "
-        "wall (CPU):"
+        f"  fast-path settings (holloway, {FAST_PRECISION}, {FAST_MESH} faces, compiled), "
+        "ship-steps / s wall (CPU):"
     )
     for kind, label in (("batch", "BatchSimulator(N)"), ("compiled", "N × CompiledShip")):
         print(
@@ -831,7 +834,6 @@ def main(argv: list[str] | None = None) -> int:
     print(f"\ntotal {elapsed:.0f} s; load average at the end {load1[0]:.2f}")
 
     if args.json is not None:
-        batched = throughput[DEFAULT_INTEGRATOR]
         results = {
             "case": "S175-full",
             "measured_utc": when,
@@ -868,14 +870,13 @@ def main(argv: list[str] | None = None) -> int:
             "mesh_accuracy": mesh_acc,
             "simulator_default_integrator": DEFAULT_INTEGRATOR,
             "simulator_n_faces": n_faces,
-            "simulator_batched_ship_steps_per_s": {
-                k: v for k, v in batched.items() if "single" not in k
-            },
-            "single_simulators_ship_steps_per_s": {
-                k.split("x")[0]: v for k, v in batched.items() if "single" in k
-            },
+            # one ship, default mesh: integrator → variant ("fast/numpy", "fast/compiled",
+            # "reference/numpy", "2b/numpy", "2b/compiled") → real-time factor (wall)
             "realtime_factor": rtf,
-            "memory_cost_ratio_by_integrator": memory_ratio,
+            # default integrator, ship-steps/s (wall): "numpy N", "compiled N" (BatchSimulator
+            # of N ships), "M x Simulator" (M compiled Simulators stepped in turn)
+            "engine_ship_steps_per_s": throughput[DEFAULT_INTEGRATOR],
+            "memory_cost_ratio_by_backend_integrator": memory_ratio,
             "memory_cost_ratio_from_components": component_ratio,
             "radiation_us_per_evaluation": {**rad, "2b": rad_2b},
             "cost_split": splits,

@@ -4,19 +4,17 @@
 Defaults
 --------
 **RK4 at Δt = 0.05 s** (the ``ShipSetup`` default). Against RK4 at Δt = 0.0125 s its relative
-RMS error in heave, roll and pitch is ≤ 1.0e-7 (1e-5 %) in both seas below (irregular 1.0e-7,
-steep regular 2.8e-8), at 80 force evaluations per simulated second. RK4 converges at fourth
-order from Δt = 0.4 s down (observed 3.8–4.1; in the irregular sea the roll error flattens
-below ≈ 1e-7, see Notes) and never diverged, so the time-integration error is far below the
-modelling errors (e.g. ≈ 1 % of the state-space radiation fit): Δt = 0.1 s
+RMS error in heave, roll and pitch is ≤ 1.8e-7 (2e-5 %) in both seas below (irregular 1.7e-7,
+steep regular 2.6e-8), at 80 force evaluations per simulated second. RK4 converges at fourth
+order from Δt = 0.4 s down (observed 3.8–4.2; in the irregular sea the roll error falls more
+slowly below Δt = 0.1 s, see Notes) and never diverged, so the time-integration error is far
+below the modelling errors (e.g. ≈ 1 % of the state-space radiation fit): Δt = 0.1 s
 (Matusiak's choice) gives ≤ 1.0e-6 at half the cost and is a sound "fast" setting; 0.2 s still
-gives ≤ 1.6e-5. Holloway's scheme at 0.05 s: 0.11–0.13 % error (lumped: 0.04–0.06 %), second
-order, 4× cheaper than RK4 at the same Δt — but at equal cost (20 evaluations/s) RK4 at 0.2 s
-is 80–180× more accurate, so Holloway pays only where its stability is needed (added mass
-lumped in the force). ABM (PECE) at 0.1 s: ≤ 2.9e-6 at 20 evaluations/s, the cheapest accurate
-scheme here, but it carries a multistep history that every reset — and, for a gym, every
-command change within it — invalidates; RK4 is one-step and self-starting. (Numbers: 120 s
-runs, ``out/convergence.json``; sampled on a 0.4 s grid.)
+gives ≤ 1.6e-5. Holloway's scheme at 0.05 s: 0.039–0.063 % error, second order (observed
+2.00–2.06), 4× cheaper than RK4 at the same Δt — but at equal cost (20 evaluations/s) RK4 at
+0.2 s is 25–120× more accurate. (Numbers: 120 s runs, ``--json``; sampled on a 0.4 s grid;
+measured on the engine of :class:`~ship_gym.engine.simulator.Simulator`, which reproduces the
+retired Python simulator's errors to the printed digits.)
 
 Method
 ------
@@ -30,29 +28,26 @@ is simulated in two seas, each with the default 50 s start-up ramp (Matusiak eq.
 * ``regular``: a steep regular wave H = 10 m, λ = 350 m (T = 15.0 s, H/λ = 1/35) at β = 60°
   (stern-quartering). λ = 175 m is too short to make the S175 roll at zero speed (T = 10.6 s
   against a roll period of 17.9 s: 0.6° in beam seas, 5° at 60°); λ = 350 m is near roll
-  resonance and gives up to 20° roll, 4.6° pitch, 4.9 m heave — large, nonlinear roll (deck edge
-  at ≈ 25°) with the |p|p damping and the wetted-surface changes fully active.
+  resonance and gives up to 21.5° roll, 2.9° pitch, 5.0 m heave — large, nonlinear roll (deck
+  edge at ≈ 25°) with the |p|p damping and the wetted-surface changes fully active.
 
-Held yaw holds r = 0, not ψ: ψ̇ = (q sin φ + r cos φ)/cos θ, so a rolling and pitching ship
-turns — by 17° over 120 s in the regular case (0.6° in the irregular one). The diffraction model
-caches X_D per component and refreshes it when ψ has moved by more than 0.5°; each refresh makes
-the diffraction force *jump*, and then every scheme converges at first order at best: with that
-cache RK4 stalls at 0.04–0.09 % for Δt = 0.4 … 0.05 s in the regular case (run with
-``--heading-tolerance 0.5``). The study therefore freezes X_D at the initial heading (tolerance
-180°), a smooth model at no extra cost; ``--heading-tolerance 0`` (X_D at the current heading
-at every evaluation, ≈ 30 % dearer) gives the same orders and errors.
+The diffraction model caches X_D per component and refreshes it when ψ has moved by more than
+``heading_tolerance_deg`` (0.5° in ``build_simulator``); a refresh makes the diffraction force
+*jump*, which would cap every scheme at first order. Here yaw is held and a held rotation keeps
+its Euler angle, so ψ stays at its initial value and the cache is never refreshed: the study
+freezes X_D anyway (tolerance 180°, ``--heading-tolerance``), and 0.5° (the package's cache) and
+0 (X_D at the current heading at every evaluation) gave the same errors to the printed digits.
 
-Notes: no scheme diverged at any Δt ≤ 0.4 s. In the irregular sea the RK4 and ABM roll errors
-level off at ≈ 1e-7 (observed order 3.3 then 2.1 below Δt = 0.1 s) while heave and pitch keep
-fourth order; the same happens without the |p|p viscous damping, so the likely cause is the
-waterline cut of the Froude–Krylov integral (a force only piecewise smooth as mesh vertices
-cross the surface), which weighs most on the small (≤ 4°) roll. It is 1e-5 % — irrelevant.
+Notes: no scheme diverged at any Δt ≤ 0.4 s. In the irregular sea the RK4 roll error falls
+more slowly below Δt = 0.1 s (3.6e-7, 1.7e-7, 3.2e-8 at 0.1, 0.05, 0.025 s: observed order 1.1
+then 2.5) while heave and pitch keep fourth order (3.8–4.1); the likely cause is the waterline
+cut of the Froude–Krylov integral (a force only piecewise smooth as mesh vertices cross the
+surface), which weighs most on the small (≤ 4°) roll. It is ≤ 2e-5 % — irrelevant.
 
-Each scheme — ``rk4`` (4 force evaluations per step), ``abm`` (Adams–Bashforth–Moulton PECE, 2),
-``holloway`` (Holloway's μ-Taylor scheme with A(∞) on the left-hand side, 1) and
-``holloway_lumped`` (A(∞) lumped into the force with the extrapolated acceleration, Holloway
-eq. 10, 1) — is run at Δt ∈ {0.4, 0.2, 0.1, 0.05, 0.025} s and compared with RK4 at
-Δt = 0.0125 s on a common 0.4 s grid. The error of a DOF is the relative RMS error
+Each scheme — ``rk4`` (4 force evaluations per step) and ``holloway`` (Holloway's μ-Taylor
+scheme with A(∞) on the left-hand side, 1, after a 2-step RK4 start-up) — is run at
+Δt ∈ {0.4, 0.2, 0.1, 0.05, 0.025} s and compared with RK4 at Δt = 0.0125 s on a common 0.4 s
+grid. The error of a DOF is the relative RMS error
 
     e = RMS(x − x_ref) / RMS(x_ref − x_ref(0))      (x_ref(0): the free-floating equilibrium)
 
@@ -64,14 +59,15 @@ that raises :class:`~ship_gym.engine.simulator.SimulationDiverged` is reported a
 Outputs: a figure (default ``out/convergence.png``: error against Δt and against evaluations per
 simulated second, per sea and scheme), a printed table, and with ``--json PATH`` the numbers
 (``dt``, per-scheme ``error``, ``order``, ``evaluations_per_second``, ``wall_s``, ``diverged``).
-A full run (120 s per simulation, ``--duration``) costs ≈ 160 s of CPU on one core;
+A full run (120 s per simulation, ``--duration``) costs ≈ 35 s of CPU on one core (the
+schemes run on the compiled backend);
 ``--replot JSON`` redraws the table and figure from saved numbers.
 
 Usage::
 
     python scripts/convergence_study.py [--output out/convergence.png] [--json PATH]
                                         [--duration 120] [--cases irregular regular]
-                                        [--schemes rk4 abm holloway holloway_lumped]
+                                        [--schemes rk4 holloway]
                                         [--dts 0.4 0.2 ...] [--heading-tolerance 180]
                                         [--replot JSON]
 """
@@ -107,9 +103,7 @@ PACKAGE_HEADING_TOLERANCE = 0.5  # Diffraction's default [deg]
 
 SCHEMES: dict[str, dict] = {
     "rk4": {"integrator": "rk4"},
-    "abm": {"integrator": "abm"},
     "holloway": {"integrator": "holloway"},
-    "holloway_lumped": {"integrator": "holloway", "lumped": True},
 }
 
 
@@ -159,26 +153,39 @@ def build(
     """The S175 simulator of a case (``build_simulator``), with its diffraction cache set.
 
     :class:`~ship_gym.forces.diffraction.Diffraction` caches X_D per component and refreshes it
-    when ψ has moved by more than ``heading_tolerance_deg`` (0.5° in ``build_simulator``). With
-    yaw held (r = 0) ψ still moves, ψ̇ = q sin φ / cos θ, so in a rolling and pitching ship a
-    refresh happens now and then and the diffraction force *jumps*: every scheme then converges
-    at first order only, with an error floor set by the jumps (module docstring). The study
-    freezes X_D at the initial heading (tolerance 180°: never refreshed) — a smooth model at no
-    extra cost; 0 (refresh at every evaluation) is also smooth but ≈ 30 % dearer.
+    when ψ has moved by more than ``heading_tolerance_deg`` [deg] (0.5° in ``build_simulator``);
+    a refresh makes the diffraction force jump (module docstring). The study freezes X_D at the
+    initial heading (180°: never refreshed). The engine converts the force models when the
+    :class:`Simulator` is built, so a different tolerance means a new Simulator from the
+    replaced model list, at the same state and commands.
     """
     setup = ShipSetup(dt=dt, free_dofs=FREE_DOFS, **SCHEMES[scheme])
     rng = None if case.seed is None else np.random.default_rng(case.seed)
     sim = build_simulator(setup, case.sea, wave_heading=math.radians(case.heading_deg), rng=rng)
-    if heading_tolerance_deg != PACKAGE_HEADING_TOLERANCE:
-        for i, f in enumerate(sim.forces):
-            if isinstance(f, Diffraction):
-                sim.forces[i] = Diffraction(
-                    load_database(setup.database),
-                    f.wave_field,
-                    heading_tolerance_deg=heading_tolerance_deg,
-                )
-        sim.reset(eta=sim.eta, nu=sim.nu, t0=sim.t)
-    return sim
+    if heading_tolerance_deg == PACKAGE_HEADING_TOLERANCE:
+        return sim
+    # the engine converts the models when the Simulator is built: replacing an entry of
+    # sim.forces afterwards has no effect, so rebuild the Simulator with the new model list
+    models = [
+        Diffraction(
+            load_database(setup.database), f.wave_field, heading_tolerance_deg=heading_tolerance_deg
+        )
+        if isinstance(f, Diffraction)
+        else f
+        for f in sim.forces
+    ]
+    rebuilt = Simulator(
+        sim.hull,
+        models,
+        wave_field=sim.wave_field,
+        forward_speed=setup.speed,
+        dt=setup.dt,
+        integrator=setup.integrator,
+        free_dofs=setup.free_dofs,
+    )
+    rebuilt.commands = sim.commands
+    rebuilt.reset(eta=sim.eta, nu=sim.nu, t0=sim.t)
+    return rebuilt
 
 
 def simulate(
@@ -191,16 +198,16 @@ def simulate(
     """Run ``scheme`` at ``dt`` for ``duration`` s, sampled every :data:`SAMPLE_DT`."""
     sim = build(case, scheme, dt, heading_tolerance_deg)
     every = round(SAMPLE_DT / dt)
-    n0 = sim.integrator.n_evaluations
+    n0 = sim.engine.n_evaluations
     t0 = time.perf_counter()
     try:
         res = sim.run(duration, record_every=every)
     except SimulationDiverged:
         wall = time.perf_counter() - t0
-        evals = (sim.integrator.n_evaluations - n0) / max(sim.t, dt)
+        evals = (sim.engine.n_evaluations - n0) / max(sim.t, dt)
         return Run(None, None, evals, wall, True, sim.t)
     wall = time.perf_counter() - t0
-    evals = (sim.integrator.n_evaluations - n0) / duration
+    evals = (sim.engine.n_evaluations - n0) / duration
     return Run(res.t, res.eta, evals, wall, False)
 
 
@@ -339,7 +346,7 @@ def plot(results: dict, path: Path) -> None:
 
     n = len(results)
     fig, axes = plt.subplots(n, 2, figsize=(11, 4.2 * n), squeeze=False)
-    markers = {"rk4": "o", "abm": "s", "holloway": "^", "holloway_lumped": "v"}
+    markers = {"rk4": "o", "holloway": "^"}
     for row, (name, res) in enumerate(results.items()):
         dts = np.array(res["dt"])
         ax_dt, ax_cost = axes[row]
@@ -348,8 +355,10 @@ def plot(results: dict, path: Path) -> None:
             cost = np.array(rows["evaluations_per_second"], float)
             ok = np.isfinite(err)
             label = scheme + (" (× = diverged)" if not ok.all() else "")
-            (line,) = ax_dt.loglog(dts[ok], err[ok], marker=markers[scheme], label=label)
-            ax_cost.loglog(cost[ok], err[ok], marker=markers[scheme], color=line.get_color())
+            (line,) = ax_dt.loglog(dts[ok], err[ok], marker=markers.get(scheme, "s"), label=label)
+            ax_cost.loglog(
+                cost[ok], err[ok], marker=markers.get(scheme, "s"), color=line.get_color()
+            )
             ymin = np.nanmin(err) if ok.any() else 1e-3
             for d in dts[~ok]:
                 ax_dt.plot(d, ymin, "x", color=line.get_color(), ms=9)

@@ -2,9 +2,9 @@
 """Reproduce Holloway (2007) §4–6: stability limits of the μ-Taylor scheme, constant coefficients.
 
 One DOF, m ẍ = F_w − (A ẍ_e + B ẋ + C x) (Holloway eq. 10, the added-mass force lumped with the
-extrapolated acceleration ẍ_e of eq. 6), integrated by ``ship_gym.engine.HollowayIntegrator``
-(eq. 4, 7–9). For A/m = 0.1…10 (15 log-spaced values) at ζ = 0.2, ω_nΔt = 0.25 the lower and
-upper μ limits are found
+extrapolated acceleration ẍ_e of eq. 6), integrated by
+``ship_gym.numerics.integrators.HollowayIntegrator`` (eq. 4, 7–9). For A/m = 0.1…10 (15
+log-spaced values) at ζ = 0.2, ω_nΔt = 0.25 the lower and upper μ limits are found
 
 * from the spectral radius of the scheme's exact amplification matrix (bisection on ρ = 1), and
 * independently, by bisection on the growth of free responses run by the integrator itself,
@@ -49,7 +49,7 @@ from ship_gym.analysis.holloway import (
     time_domain_growth,
     time_domain_stability_limits,
 )
-from ship_gym.engine import RK4, AdamsBashforthMoulton, HollowayIntegrator
+from ship_gym.numerics.integrators import RK4, AdamsBashforthMoulton, HollowayIntegrator
 
 ZETA = 0.2  # Holloway Fig. 2(a)
 OMEGA_DT = 0.25  # ω_nΔt, Holloway Fig. 2(a)

@@ -55,8 +55,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ship_gym.analysis import identification as ident
-from ship_gym.engine.roll_equation import RollEquation
 from ship_gym.io_utils import atomic_write, atomic_write_text
+from ship_gym.roll.equation import RollEquation
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure

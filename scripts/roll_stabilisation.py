@@ -132,9 +132,11 @@ def roll_run(fins: str, duration: float, sea: IrregularSea) -> dict:
     )
     sim, _ = build(setup, sea, np.pi / 2, ROLL_SEED)
     n = round(duration / sim.dt)
+    # the single-ship model in sim.forces gives the parameters (controller gains, the fins'
+    # lift); its servo and controller states are not stepped: those live in the engine
     fin = None
     if fins != "none":
-        fin = sim.forces[[f.name for f in sim.forces].index("roll_fins")]
+        fin = next(f for f in sim.forces if f.name == "roll_fins")
     t = np.empty(n + 1)
     eta = np.empty((n + 1, 6))
     nu = np.empty((n + 1, 6))
@@ -148,7 +150,8 @@ def roll_run(fins: str, duration: float, sea: IrregularSea) -> dict:
             sim.step()
         t[i], eta[i], nu[i] = sim.t, sim.eta, sim.nu
         if fin is not None:
-            angle = fin.angle
+            angle = sim.actuator_angle("roll_fins")
+            integral = float(sim.engine.actuator_model("roll_fins").states.integral[0])
             applied = float(FIN_SERVO.applied(angle))
             ctx = ForceContext(
                 t=sim.t,
@@ -158,9 +161,7 @@ def roll_run(fins: str, duration: float, sea: IrregularSea) -> dict:
                 forward_speed=sim.forward_speed,
                 commands={"fins": applied},
             )
-            command[i], _ = fin_law(
-                fin.gains, sim.eta, sim.nu, float(fin.states.integral[0]), FIN_SERVO.max_angle
-            )
+            command[i], _ = fin_law(fin.gains, sim.eta, sim.nu, integral, FIN_SERVO.max_angle)
             delta[i] = applied
             moment[i] = fin.model.evaluate(ctx, np.zeros(0))[0][3]
             target = float(FIN_SERVO.applied(command[i]))

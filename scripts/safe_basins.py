@@ -26,8 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from ship_gym.analysis import safe_basin as sb
-from ship_gym.engine.roll_equation import RollEquation
 from ship_gym.io_utils import atomic_write_text
+from ship_gym.roll.equation import RollEquation
 
 
 def main() -> int:

@@ -5,8 +5,8 @@ Holloway (2007) §4 studies one DOF whose force lumps the added-mass reaction wi
 
     m ẍ = F_w − (A ẍ_e + B ẋ + C x),     ẍ_e = (3ẋₖ − 4ẋₖ₋₁ + ẋₖ₋₂)/(2Δt)   (eq. 6)
 
-integrated by :class:`ship_gym.engine.HollowayIntegrator` (eq. 4, 7–9). The scheme is linear,
-so one step is an exact linear map sₖ₊₁ = M sₖ + b F_w,k of the state
+integrated by :class:`~ship_gym.numerics.integrators.HollowayIntegrator` (eq. 4, 7–9). The
+scheme is linear, so one step is an exact linear map sₖ₊₁ = M sₖ + b F_w,k of the state
 
     s = (x, ẋ, ẋₖ₋₁, ẋₖ₋₂, hₖ₋₁, hₖ₋₂, pₖ₋₁)
 
@@ -33,8 +33,8 @@ Readings of the paper (:class:`HollowayReading`) that the text leaves open and t
 eq. 7 differentiates (``"blended"`` ẍ of eq. 4, ``"computed"`` ẍ_c, or ``"extrapolated"`` ẍ_e);
 and which acceleration the lumped force uses (``"extrapolated"`` ẍ_e of eq. 6 as the paper says,
 or the ``"previous"`` step's blended ẍ). The default reading (virtual, blended, extrapolated) is
-the one :class:`~ship_gym.engine.HollowayIntegrator` implements and gives 0.2195 < μ(1 + A/m)
-< 1.1401 at ζ = 0.2, ω_nΔt = 0.25 (eq. 11: 0.22 and 1.14).
+the one :class:`~ship_gym.numerics.integrators.HollowayIntegrator` implements and gives
+0.2195 < μ(1 + A/m) < 1.1401 at ζ = 0.2, ω_nΔt = 0.25 (eq. 11: 0.22 and 1.14).
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from ship_gym.engine.integrators import HollowayIntegrator
+from ship_gym.numerics.integrators import HollowayIntegrator
 from ship_gym.typing import FloatArray
 
 __all__ = [
@@ -480,7 +480,7 @@ def lumped_oscillator_rhs(
 ) -> Callable[[float, FloatArray, FloatArray, FloatArray], FloatArray]:
     """Right-hand side ẍ_c = [F_w(t) − (A ẍ_e + B ẋ + C x)]/m (Holloway eq. 10) per DOF.
 
-    For :class:`~ship_gym.engine.HollowayIntegrator`: independent DOF (all arguments
+    For :class:`~ship_gym.numerics.integrators.HollowayIntegrator`: independent DOF (all arguments
     broadcast per DOF), the added-mass force lumped with the extrapolated acceleration.
 
     Parameters
@@ -519,7 +519,8 @@ def lumped_oscillator_rhs(
 def integrator_amplification_matrix(
     mass_ratio: float, mu: float, zeta: float, omega_n_dt: float
 ) -> FloatArray:
-    """Amplification matrix measured on :class:`~ship_gym.engine.HollowayIntegrator` itself.
+    """Amplification matrix measured on
+    :class:`~ship_gym.numerics.integrators.HollowayIntegrator` itself.
 
     Six copies of the oscillator (one per DOF) start from the unit vectors of the state
     (x, ẋ, ẋₖ₋₁, ẋₖ₋₂, ẍₖ₋₁, ẍₖ₋₂), installed with ``set_history``; one step gives the

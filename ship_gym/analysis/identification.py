@@ -43,7 +43,7 @@ What this module adds, and the readings it takes:
   *freely from the first data point* over the whole record (training window and beyond);
   :func:`predict_roll` can also start at the end of the training window.
 
-Integration goes through :meth:`ship_gym.engine.roll_equation.RollEquation.integrate`: all N
+Integration goes through :meth:`ship_gym.roll.equation.RollEquation.integrate`: all N
 pieces are one batch (one compiled RK4 call), each piece's different start time entering as a
 per-piece forcing phase ε + ωₑ t_j; a wave-elevation input enters as a callable moment looked up
 from a table of the input at the RK4 half steps (linear interpolation of the record).
@@ -66,7 +66,7 @@ import numpy as np
 import numpy.typing as npt
 from numpy.typing import NDArray
 
-from ship_gym.engine.roll_equation import RollEquation, RollTrajectory
+from ship_gym.roll.equation import RollEquation, RollTrajectory
 from ship_gym.typing import FloatArray
 
 if TYPE_CHECKING:

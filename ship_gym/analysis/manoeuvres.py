@@ -301,6 +301,8 @@ def turning_metrics(
     heading_change : numpy.ndarray
         Heading change in the direction of the turn [rad] (increasing).
 
+    Notes
+    -----
     Values at 90° and 180° are interpolated linearly between samples.
     """
     t, x, y, h = (np.asarray(a, float) for a in (t, x, y, heading_change))
@@ -363,6 +365,8 @@ def zigzag_metrics(
     switch_deg : float
         Check (switch) heading angle [deg] (> 0).
 
+    Notes
+    -----
     The k-th overshoot is max over [t_k, t_{k+1}] (or to the end of the record) of
     ±h − switch_deg (+ for odd k, − for even k): the excursion beyond the check angle.
     """
@@ -1017,10 +1021,10 @@ def autopilot_step(
 def nomoto_of(sim: Simulator) -> tuple[float, float]:
     """Nomoto K [1/s], T [s] of the assembled ship at its speed, identified as
     :func:`~ship_gym.engine.ship.build_simulator` does for the autopilot
-    (:func:`~ship_gym.engine.linearization.nomoto_from_models` on the resistance, propeller,
+    (:func:`~ship_gym.engine.linearisation.nomoto_from_models` on the resistance, propeller,
     hull manoeuvring and rudder models at the current commands)."""
     from ship_gym.control.actuators import Actuated
-    from ship_gym.engine.linearization import nomoto_from_models
+    from ship_gym.engine.linearisation import nomoto_from_models
     from ship_gym.forces.manoeuvring import HullManoeuvring
     from ship_gym.forces.resistance import CalmWaterResistance
 

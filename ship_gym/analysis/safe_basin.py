@@ -5,7 +5,7 @@ within a given time: a grid of initial roll [rad] and roll rate [rad/s] is integ
 is *capsized* when |φ| exceeds the capsize angle (by default the vanishing angle of the restoring)
 at any time step (McCue & Campbell, figure 8: "Safe basin ... grid of initial conditions").
 
-* :func:`safe_basin` — a 1-DOF :class:`~ship_gym.engine.roll_equation.RollEquation` (e.g. the
+* :func:`safe_basin` — a 1-DOF :class:`~ship_gym.roll.equation.RollEquation` (e.g. the
   Edith Terkol, McCue & Campbell eq. 1, or a fitted eq. 2 model): the whole grid is one batch of
   the compiled RK4 kernel (in chunks of rows, for the progress bar).
 * :func:`s175_safe_basin` — the same through the 6-DOF simulator, a 1-DOF slice of a real hull:
@@ -42,8 +42,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ship_gym.engine.roll_equation import RollEquation
 from ship_gym.io_utils import atomic_write, atomic_write_text
+from ship_gym.roll.equation import RollEquation
 from ship_gym.typing import FloatArray
 
 if TYPE_CHECKING:

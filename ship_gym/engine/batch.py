@@ -38,7 +38,7 @@ Integrators
 -----------
 ``"rk4"`` (4 evaluations per step) and ``"holloway"`` (Holloway's μ-Taylor scheme, 1 evaluation
 per step after a 2-step RK4 start-up; the arithmetic of
-:class:`ship_gym.engine.integrators.HollowayIntegrator` on batch arrays, μ = 1 by default: the
+:class:`ship_gym.numerics.integrators.HollowayIntegrator` on batch arrays, μ = 1 by default: the
 acceleration is exact, the added mass being on the left). Histories are per ship, so a ship that
 is reset restarts its own start-up while the others go on with one evaluation per step: the
 start-up ships' extra RK4 stages are evaluated for those ships only.
@@ -683,7 +683,7 @@ def _holloway_rows(
     η̇ = J(η) ν) and ``_taylor2_update`` (first-order states); the per-ship histories (rows s
     of v1, v2, a1, a2, qd1, qd2, qdd1, qdd2, zd1, zd2; index 1 the newest) are shifted in place.
     After the RK4 start-up (``pending``) q̈ at the two previous instants comes from the q̇
-    history, as in :class:`ship_gym.engine.integrators.HollowayIntegrator`.
+    history, as in :class:`ship_gym.numerics.integrators.HollowayIntegrator`.
     """  # fmt: skip
     c = 0.5 / dt
     h2 = 0.5 * dt * dt
@@ -1601,6 +1601,8 @@ def build_batch_simulator(
     parallel : bool
         Spread the ships over numba's threads in the compiled loop.
 
+    Notes
+    -----
     The initial commands are broadcast to (N,) arrays in :attr:`BatchSimulator.commands`. With
     propulsion at a positive speed, each ship's shaft speed is trimmed on its assembled surge
     balance at its initial state, as :func:`ship_gym.engine.ship.build_simulator` does

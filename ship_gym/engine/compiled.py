@@ -30,7 +30,7 @@ spread over numba's threads. Per ship the call returns the task reductions over 
 max |φ|, Σ φ², the number of steps with |φ| above a threshold, and whether it diverged (the
 ship then keeps the state of the start of the failed step). The arithmetic is that of the
 numpy path of :class:`BatchSimulator` (the reference, ``backend="numpy"``); the wave phasors
-use the polynomial :func:`ship_gym.forces.fastmath.sincos_turns` instead of libm, so the two
+use the polynomial :func:`ship_gym.numerics.fastmath.sincos_turns` instead of libm, so the two
 agree to rounding, not bit for bit (tested).
 
 Not compiled (the engine falls back to its numpy path): per-ship Python models
@@ -57,13 +57,13 @@ from ship_gym.engine.batch_control import (
 )
 from ship_gym.engine.rigid_body import healthy_state, rigid_body_terms
 from ship_gym.forces.diffraction import diffraction_force, refresh_diffraction_cache
-from ship_gym.forces.fastmath import sincos_turns
 from ship_gym.forces.froude_krylov import _fk_core, _fk_core_f32
 from ship_gym.forces.lifting_surface import surface_group_force
 from ship_gym.forces.manoeuvring import manoeuvring_force
 from ship_gym.forces.propeller import propeller_force
 from ship_gym.forces.radiation import state_space_radiation
 from ship_gym.forces.resistance import holtrop_total
+from ship_gym.numerics.fastmath import sincos_turns
 
 if TYPE_CHECKING:
     from ship_gym.engine.batch import BatchSimulator

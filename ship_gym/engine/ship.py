@@ -34,7 +34,7 @@ import numpy as np
 from ship_gym.control.actuators import FIN_SERVO, FOIL_SERVO, RUDDER_SERVO, Actuated
 from ship_gym.control.autopilot import HeadingAutopilot
 from ship_gym.control.stabilisers import FinController, RideController, control_derivative
-from ship_gym.engine.linearization import nomoto_from_models
+from ship_gym.engine.linearisation import nomoto_from_models
 from ship_gym.forces.added_resistance import AddedResistance
 from ship_gym.forces.base import ForceModel
 from ship_gym.forces.diffraction import Diffraction

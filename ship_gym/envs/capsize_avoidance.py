@@ -5,7 +5,7 @@ prediction": regular waves λ = 1.5 L, amplitude 4.5 m for L = 150 m, Fn 0.2–0
 off following seas; the A-1 container ship capsized at Fn 0.4, 30°) on the S175, scaled with
 length (amplitude 5.25 m, H ≈ 10.5 m, λ ≈ 262 m). The heading autopilot steers; the agent
 changes its set-point and the engine telegraph. The task (:class:`CapsizeAvoidanceTask`) runs on
-:class:`ship_gym.envs.ship_task.S175Task`.
+:class:`ship_gym.envs.s175.S175Task`.
 """
 
 from __future__ import annotations
@@ -21,20 +21,12 @@ from numpy.typing import NDArray
 from ship_gym.conventions import GRAVITY
 from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
+from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
 from ship_gym.envs.registration import max_episode_steps
-from ship_gym.envs.ship_task import (
-    S175_MESH,
-    S175Task,
-    SeaSampler,
-    StepStatistics,
-    check_positive,
-    check_range,
-    check_weight,
-    env_docstring,
-    ship_kwargs,
-    vector_env_docstring,
-    write_heading_observations,
-)
+from ship_gym.envs.s175 import S175_MESH, S175Task, ship_kwargs
+from ship_gym.envs.seas import SeaSampler
+from ship_gym.envs.ship_task import StepStatistics, write_heading_observations
+from ship_gym.envs.validation import check_positive, check_range, check_weight
 from ship_gym.typing import IntegratorName, Precision
 
 __all__ = [

@@ -1,6 +1,6 @@
 """``ship_gym/CourseKeeping-v1``: steer the S175 on a heading in irregular seas with its rudder.
 
-The task (:class:`CourseKeepingTask`) runs on :class:`ship_gym.envs.ship_task.S175Task`; the
+The task (:class:`CourseKeepingTask`) runs on :class:`ship_gym.envs.s175.S175Task`; the
 Gymnasium faces are :class:`CourseKeepingEnv` (one episode) and :class:`CourseKeepingVectorEnv`
 (N episodes in one BatchSimulator). The environment docstring (Gymnasium v5 template) lists
 every keyword argument with its unit.
@@ -16,21 +16,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
+from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
 from ship_gym.envs.registration import max_episode_steps
-from ship_gym.envs.ship_task import (
-    RUDDER_LIMIT_DEG,
-    S175_MESH,
-    S175Task,
-    StepStatistics,
-    check_positive,
-    check_weight,
-    clip_into,
-    env_docstring,
-    irregular_sea,
-    ship_kwargs,
-    vector_env_docstring,
-    write_heading_observations,
-)
+from ship_gym.envs.s175 import RUDDER_LIMIT_DEG, S175_MESH, S175Task, irregular_sea, ship_kwargs
+from ship_gym.envs.ship_task import StepStatistics, clip_into, write_heading_observations
+from ship_gym.envs.validation import check_positive, check_weight
 from ship_gym.typing import IntegratorName, Precision
 
 __all__ = ["MAX_EPISODE_STEPS", "CourseKeepingEnv", "CourseKeepingTask", "CourseKeepingVectorEnv"]

@@ -56,7 +56,7 @@ class EnvEntry:
 
 ENTRIES: tuple[EnvEntry, ...] = (
     EnvEntry("CourseKeeping", "course_keeping", 1000, 1),
-    EnvEntry("RollStabilization", "roll_stabilization", 1000, 1),
+    EnvEntry("RollStabilization", "roll_stabilisation", 1000, 1),
     EnvEntry("RideControl", "ride_control", 1000, 1),
     EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500, 1),
     EnvEntry("RollOneDOF", "roll_one_dof", 1000, 0),

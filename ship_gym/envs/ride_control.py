@@ -1,7 +1,7 @@
 """``ship_gym/RideControl-v1``: reduce the vertical accelerations of the S175 in head seas.
 
-The task (:class:`RideControlTask`) runs on :class:`ship_gym.envs.ship_task.S175Task` with the
-comfort bookkeeping of :class:`ship_gym.envs.roll_stabilization.ComfortShipTask`; the Gymnasium
+The task (:class:`RideControlTask`) runs on :class:`ship_gym.envs.s175.S175Task` with the
+comfort bookkeeping of :class:`ship_gym.envs.roll_stabilisation.ComfortShipTask`; the Gymnasium
 faces are :class:`RideControlEnv` and :class:`RideControlVectorEnv`.
 """
 
@@ -13,20 +13,14 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from ship_gym.comfort.metrics import ComfortSample
 from ship_gym.envs.base import TaskEnv, TaskStep, TaskVectorEnv
-from ship_gym.envs.comfort import ComfortSample
+from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
 from ship_gym.envs.registration import max_episode_steps
-from ship_gym.envs.roll_stabilization import ComfortShipTask
-from ship_gym.envs.ship_task import (
-    S175_MESH,
-    StepStatistics,
-    check_positive,
-    check_weight,
-    env_docstring,
-    irregular_sea,
-    ship_kwargs,
-    vector_env_docstring,
-)
+from ship_gym.envs.roll_stabilisation import ComfortShipTask
+from ship_gym.envs.s175 import S175_MESH, irregular_sea, ship_kwargs
+from ship_gym.envs.ship_task import StepStatistics
+from ship_gym.envs.validation import check_positive, check_weight
 from ship_gym.typing import IntegratorName, Precision
 
 __all__ = ["MAX_EPISODE_STEPS", "RideControlEnv", "RideControlTask", "RideControlVectorEnv"]
@@ -161,7 +155,7 @@ class RideControlEnv(TaskEnv):
     The agent commands the T-foil. No stern flaps: the S175's cruiser stern has no immersed
     transom to carry them. The reward penalises the ISO 2631-1 W_f-weighted vertical
     acceleration at a passenger point (whose squared sum over an episode is the motion sickness
-    dose, :mod:`ship_gym.envs.comfort`) and actuator effort.
+    dose, :mod:`ship_gym.comfort.metrics`) and actuator effort.
 
     ## Action Space
 
@@ -179,7 +173,7 @@ class RideControlEnv(TaskEnv):
     | 16… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
 
     The accelerations at the passenger point use ν̇ from the backward difference of ν over the
-    control step (:class:`ship_gym.envs.comfort.PassengerComfort`).
+    control step (:class:`ship_gym.comfort.metrics.PassengerComfort`).
 
     ## Rewards
 

@@ -1,7 +1,7 @@
 """``ship_gym/RollOneDOF-v0``: keep a single-DOF rolling ship (the Edith Terkol) from capsizing.
 
 A fast, cheap capsize task on the nonlinear roll equation of McCue & Campbell eq. 1
-(:class:`ship_gym.engine.roll_equation.RollEquation`, Soliman & Thompson's *Edith Terkol*)
+(:class:`ship_gym.roll.equation.RollEquation`, Soliman & Thompson's *Edith Terkol*)
 driven by a regular beam-sea roll moment F sin(ωₑt + ε), with a controllable roll moment (an
 anti-roll tank or fin pair reduced to an ideal moment per unit inertia) as the action. N episodes
 are integrated together by one compiled RK4 kernel (:meth:`RollEquation.advance`), so thousands of
@@ -19,9 +19,9 @@ import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
-from ship_gym.engine.roll_equation import EDITH_TERKOL_NATURAL_FREQUENCY, RollEquation
 from ship_gym.envs.base import BatchedTask, TaskEnv, TaskStep, TaskVectorEnv
 from ship_gym.envs.registration import max_episode_steps
+from ship_gym.roll.equation import EDITH_TERKOL_NATURAL_FREQUENCY, RollEquation
 
 if TYPE_CHECKING:
     from ship_gym.envs.rendering import RenderSnapshot

@@ -16,7 +16,7 @@ Three implementations, which the tests hold to 1e-6 (2e-6 for ``fast32``) relati
 
 * ``method="fast"``: a numba kernel that evaluates the wave once per *vertex* (elevation and
   pressure share the per-component spatial terms), with branch-free polynomial sin/cos/exp that
-  LLVM vectorises across vertices (:mod:`ship_gym.forces.fastmath`), and the time factor and the
+  LLVM vectorises across vertices (:mod:`ship_gym.numerics.fastmath`), and the time factor and the
   ship's horizontal position folded into one modulus and phase per component. The integration
   counts every triangle as wet through precomputed per-vertex weights and corrects only the
   triangles that cross the surface. The polynomials run at the floating-point throughput limit
@@ -41,15 +41,15 @@ import numba as nb
 import numpy as np
 
 from ship_gym.forces.base import ForceContext, ForceModel
-from ship_gym.forces.fastmath import (
+from ship_gym.hull.hull import Hull
+from ship_gym.hull.mesh import PanelMesh, clip_triangles, pressure_resultant
+from ship_gym.numerics.fastmath import (
     cos_turns,
     cos_turns_nonneg_f32,
     exp2_neg,
     exp2_neg_f32,
     exp2_neg_unclamped_f32,
 )
-from ship_gym.hull.hull import Hull
-from ship_gym.hull.mesh import PanelMesh, clip_triangles, pressure_resultant
 from ship_gym.waves.wave_field import WaveField
 
 Method = Literal["fast", "fast32", "reference"]
@@ -155,10 +155,10 @@ class WaveComponents:
 #   indices (numba's negative-index wraparound costs ~30 % in these loops).
 # * Phases are formed in turns (kⱼ cos χⱼ / 2π per call), and each component enters as modulus
 #   and phase offset, Re cⱼ e^{−iθ} = |cⱼ| cos(θ − arg cⱼ): the spatial term is one cosine
-#   (:func:`~ship_gym.forces.fastmath.cos_turns`: range reduction by one exact subtraction, one
+#   (:func:`~ship_gym.numerics.fastmath.cos_turns`: range reduction by one exact subtraction, one
 #   even polynomial, two cosine-only angle doublings; 13 multiply/FMA operations per pair with
 #   the phase, against 22 with sin and cos). The decay e^{−k d} = 2^{−(k/ln2) d} needs no
-#   Cody–Waite step either (:func:`~ship_gym.forces.fastmath.exp2_neg`; 13 operations per pair
+#   Cody–Waite step either (:func:`~ship_gym.numerics.fastmath.exp2_neg`; 13 operations per pair
 #   with the product and the sum). Both are the "kernel tier" polynomials of fastmath (errors
 #   ≲ 1e-12; forces within ~1e-13 of the libm reference; 12 % faster than the few-ulp ones).
 #   The FMA units execute these at ≈ 0.8–1 ns per pair: the kernel runs at that limit
@@ -571,21 +571,21 @@ def _fk_core(
 
 # ----------------------------------------------------------------------------- float32 kernel
 # The same algorithm with the wave sums in single precision (``method="fast32"``): 8 lanes per
-# AVX2 vector instead of 4 and shorter polynomials (:func:`~ship_gym.forces.fastmath.
-# cos_turns_f32`, :func:`~ship_gym.forces.fastmath.exp2_neg_f32`). What stays float64: the
+# AVX2 vector instead of 4 and shorter polynomials (:func:`~ship_gym.numerics.fastmath.
+# cos_turns_f32`, :func:`~ship_gym.numerics.fastmath.exp2_neg_f32`). What stays float64: the
 # rotation of the vertices, the hydrostatic part z of the depth and of the pressure, the
 # integration; only the wave terms (elevation ζ and the decayed dynamic pressure Σ e^{−k d} S)
 # are summed in float32. Errors: the phase in turns is formed in float32 (|t| ≲ 8 turns for
 # the S175 in a Tp = 11 s sea: ≲ 5e-7 turn), each term carries ≲ 3e-7 of its amplitude, so ζ
 # and the dynamic pressure are off by ~1e-6 of their size; the force and moment by ~1e-7 of the
 # hydrostatic ones (tests/physics/test_froude_krylov.py holds them to the reference at 2e-6).
-# The pair loops use the lean float32 polynomials (:func:`~ship_gym.forces.fastmath.
+# The pair loops use the lean float32 polynomials (:func:`~ship_gym.numerics.fastmath.
 # cos_turns_nonneg_f32`: degree 8, the modulus folded into the coefficients, 7 multiply/FMA
-# operations per pair besides the phase; :func:`~ship_gym.forces.fastmath.
+# operations per pair besides the phase; :func:`~ship_gym.numerics.fastmath.
 # exp2_neg_unclamped_f32`: degree 5, the 2^−n scaling an integer subtraction on the exponent
 # field, no clamp, 7 with the product and the sum). The clamp is hoisted to the sub-block:
 # a component whose (k/ln 2)·max d reaches 125 there takes the clamped
-# :func:`~ship_gym.forces.fastmath.exp2_neg_f32` (never in ordinary seas). Against the
+# :func:`~ship_gym.numerics.fastmath.exp2_neg_f32` (never in ordinary seas). Against the
 # degree-10/6 polynomials with a clamp per pair, ≈ 13 % less kernel time (S175-full,
 # 1500 faces, Hs 5 m: elevation pass ≈ 0.23 ns, pressure pass ≈ 0.27 ns per pair), and the
 # forces stay as close to the float64 reference (≲ 3e-7 of the force scale over S175-full

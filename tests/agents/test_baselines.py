@@ -1,4 +1,5 @@
-"""agents.baselines: name lookup, the control laws' arithmetic and signs, and that they control."""
+"""ship_gym.agents.baselines: name lookup, the control laws' arithmetic and signs, and that
+they control."""
 
 import math
 
@@ -7,7 +8,7 @@ import numpy as np
 import pytest
 
 import ship_gym  # noqa: F401  (registers the ids)
-from agents.baselines import (
+from ship_gym.agents.baselines import (
     EnvLayout,
     PIDAutopilot,
     RideController,
@@ -141,7 +142,7 @@ def test_for_env_reads_names_from_single_vector_and_sb3_envs():
 def test_roll_fin_baseline_prevents_capsizes_on_roll_one_dof():
     """Same 12 seas: the passive ship capsizes in about half (F up to 0.05 rad/s² at 0.85 ωₙ,
     beyond the safe-basin erosion threshold), the PD roll-moment controller in none."""
-    from agents.evaluate import run_episodes, summarize
+    from ship_gym.agents.evaluate import run_episodes, summarize
 
     seeds = range(100, 112)
     zero = summarize(run_episodes(ROLL_ID, lambda env: make_baseline("zero", env), seeds))
@@ -170,7 +171,7 @@ def test_ride_baseline_lowers_passenger_vertical_acceleration_on_ride_control():
     episode lower; the bound (−3 % on the mean, each episode lower) leaves room for small changes
     of the ship model while still failing for the former defaults (k_heave 1, k_pitch 10: ≈ −1 %).
     """
-    from agents.evaluate import run_episodes
+    from ship_gym.agents.evaluate import run_episodes
 
     seeds, steps = [0, 1, 2, 3], 160
     runs = {

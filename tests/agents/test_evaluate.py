@@ -1,4 +1,5 @@
-"""agents.evaluate: batched episodes equal single-env episodes of the same seeds; outputs."""
+"""ship_gym.agents.evaluate: batched episodes equal single-env episodes of the same seeds;
+outputs."""
 
 import csv
 import json
@@ -8,8 +9,14 @@ import numpy as np
 import pytest
 
 import ship_gym  # noqa: F401  (registers the ids)
-from agents.baselines import make_baseline
-from agents.evaluate import METRICS, evaluate_policies, run_episodes, summarize, write_results
+from ship_gym.agents.baselines import make_baseline
+from ship_gym.agents.evaluate import (
+    METRICS,
+    evaluate_policies,
+    run_episodes,
+    summarize,
+    write_results,
+)
 
 ROLL_ID = "ship_gym/RollOneDOF-v0"
 

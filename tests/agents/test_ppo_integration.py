@@ -21,8 +21,8 @@ def test_ppo_improves_on_zero_action_on_the_same_seas(tmp_path):
     PD baseline). We require the learned policy to gain at least 100 in mean return (half the
     observed gap, room for seed-to-seed training variance) and to capsize strictly less often.
     """
-    from agents.evaluate import evaluate_policies
-    from agents.train import config_from_mapping, train
+    from ship_gym.agents.evaluate import evaluate_policies
+    from ship_gym.agents.train import config_from_mapping, train
 
     config = config_from_mapping(
         {

@@ -1,19 +1,19 @@
-"""agents.train and ship_gym.cli_agents: configs, a tiny training run, CLI wiring."""
+"""ship_gym.agents.train and ship_gym.cli.agents: configs, a tiny training run, CLI wiring."""
 
 import argparse
 import tomllib
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import ship_gym  # noqa: F401
-from agents.evaluate import load_policy
-from agents.train import config_from_mapping, dump_toml, load_config, train
-from ship_gym import cli_agents
+from ship_gym.agents.configs import shipped_config_names
+from ship_gym.agents.evaluate import load_policy
+from ship_gym.agents.train import config_from_mapping, dump_toml, load_config, train
+from ship_gym.cli import agents as cli_agents
 from ship_gym.envs import ENV_IDS
 
-CONFIGS = sorted((Path(__file__).parents[2] / "agents" / "configs").glob("*.toml"))
+CONFIGS = shipped_config_names()
 
 
 def test_there_is_a_config_for_every_env_id():
@@ -21,9 +21,9 @@ def test_there_is_a_config_for_every_env_id():
     assert ids == set(ENV_IDS)
 
 
-@pytest.mark.parametrize("path", CONFIGS, ids=lambda p: p.stem)
-def test_shipped_configs_are_valid_and_round_trip(path):
-    config = load_config(path)
+@pytest.mark.parametrize("name", CONFIGS)
+def test_shipped_configs_are_valid_and_round_trip(name):
+    config = load_config(name)
     assert config.algorithm in ("PPO", "SAC")
     assert config.total_timesteps > 10_000
     assert tomllib.loads(dump_toml(config.raw)) == config.raw

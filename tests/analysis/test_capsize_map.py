@@ -196,7 +196,7 @@ def test_parallel_equals_serial(serial_real, tmp_path):
 
 
 def test_cli_parses_and_runs(tmp_path, capsys):
-    from ship_gym import cli_capsize
+    from ship_gym.cli import capsize as cli_capsize
 
     parser = argparse.ArgumentParser()
     cli_capsize.add_commands(parser.add_subparsers(dest="command"))

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from ship_gym.analysis import identification as ident
-from ship_gym.engine.roll_equation import RollEquation
+from ship_gym.roll.equation import RollEquation
 
 OMEGA = 0.527  # McCue & Campbell's encounter frequency 0.85 × 0.62 [rad/s]
 # eq. 2 with damping and softening stiffness of the Edith Terkol's order of magnitude
@@ -205,7 +205,7 @@ def test_csv_errors_are_clear(tmp_path):
 
 
 def test_cli_round_trip(tmp_path):
-    from ship_gym import cli_identify
+    from ship_gym.cli import identify as cli_identify
 
     rec = _record(TRUE, duration=150.0)
     csv_path = ident.write_roll_csv(tmp_path / "roll.csv", rec)

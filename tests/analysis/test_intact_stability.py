@@ -87,7 +87,7 @@ def test_smoke_dead_ship_and_cli(tmp_path, capsys):
     import argparse
     import json
 
-    from ship_gym import cli_capsize
+    from ship_gym.cli import capsize as cli_capsize
 
     res = ist.dead_ship(hs=4.0, tp=12.0, seeds=(0,), duration=10.0, dt=0.5)
     assert res.capsize_probability == 0.0 and len(res.outcomes) == 1

@@ -15,7 +15,7 @@ from ship_gym.analysis.safe_basin import (
     write_basin,
     write_integrity_csv,
 )
-from ship_gym.engine.roll_equation import RollEquation
+from ship_gym.roll.equation import RollEquation
 
 ET = RollEquation.edith_terkol()
 UNDAMPED = RollEquation(c1=ET.c1, c2=ET.c2, c3=ET.c3, c4=ET.c4, c5=ET.c5)
@@ -130,10 +130,10 @@ def test_cli_safe_basin_edith_terkol(tmp_path, capsys):
     import argparse
     import json
 
-    from ship_gym import cli_roll
+    from ship_gym.cli import safe_basin as cli_safe_basin
 
     parser = argparse.ArgumentParser()
-    cli_roll.add_commands(parser.add_subparsers())
+    cli_safe_basin.add_commands(parser.add_subparsers())
     args = parser.parse_args(
         [
             "safe-basin", "--model", "edith-terkol", "--forcing", "0.03", "--grid", "11",

@@ -20,7 +20,7 @@ from ship_gym.envs.base import TaskEnv, TaskVectorEnv
 from ship_gym.envs.capsize_avoidance import CapsizeAvoidanceEnv, CapsizeAvoidanceVectorEnv
 from ship_gym.envs.course_keeping import CourseKeepingEnv, CourseKeepingVectorEnv
 from ship_gym.envs.ride_control import RideControlEnv, RideControlVectorEnv
-from ship_gym.envs.roll_stabilization import RollStabilizationEnv, RollStabilizationVectorEnv
+from ship_gym.envs.roll_stabilisation import RollStabilizationEnv, RollStabilizationVectorEnv
 
 COARSE_MESH = (24, 6, 3, 2)
 COARSE = {"hull_mesh": COARSE_MESH, "n_wave_components": 20}

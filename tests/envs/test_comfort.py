@@ -1,11 +1,11 @@
-"""Comfort measures (ship_gym.envs.comfort) against closed forms and the ISO 2631-1 table."""
+"""Comfort measures (ship_gym.comfort.metrics) against closed forms and the ISO 2631-1 table."""
 
 import math
 
 import numpy as np
 import pytest
 
-from ship_gym.envs.comfort import (
+from ship_gym.comfort.metrics import (
     WF,
     ExponentialRMS,
     RunningDose,

@@ -14,13 +14,13 @@ from gymnasium.utils.env_checker import check_env as gym_check_env
 from gymnasium.vector import AutoresetMode
 from scipy.optimize import brentq
 
-from ship_gym.engine.roll_equation import RollEquation
 from ship_gym.envs.roll_one_dof import (
     MAX_EPISODE_STEPS,
     RollOneDOFEnv,
     RollOneDOFTask,
     RollOneDOFVectorEnv,
 )
+from ship_gym.roll.equation import RollEquation
 
 ENV_ID = "ship_gym:ship_gym/RollOneDOF-v0"
 

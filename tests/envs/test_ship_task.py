@@ -28,8 +28,10 @@ from _ship_env_checks import (
 from ship_gym.engine.batch import build_batch_simulator
 from ship_gym.engine.ship import ShipSetup, wave_field_for
 from ship_gym.envs.course_keeping import CourseKeepingEnv, CourseKeepingTask
+from ship_gym.envs.docstrings import arguments_table
+from ship_gym.envs.loading import loading_condition
 from ship_gym.envs.registration import ENTRIES
-from ship_gym.envs.ship_task import SeaSampler, arguments_table, loading_condition
+from ship_gym.envs.seas import SeaSampler
 from ship_gym.hull import load_hull, righting_arm
 from ship_gym.waves.sea_state import IrregularSea
 

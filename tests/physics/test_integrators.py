@@ -24,7 +24,7 @@ from ship_gym.analysis.holloway import (
     stability_limits,
     time_domain_growth,
 )
-from ship_gym.engine import (
+from ship_gym.numerics.integrators import (
     RK4,
     AdamsBashforthMoulton,
     HollowayIntegrator,

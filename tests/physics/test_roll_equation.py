@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from ship_gym.engine.roll_equation import RollEquation
+from ship_gym.roll.equation import RollEquation
 
 
 def test_linear_undamped_free_matches_closed_form():

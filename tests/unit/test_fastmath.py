@@ -1,4 +1,4 @@
-"""Branch-free polynomial sin/cos/exp of ship_gym.forces.fastmath against numpy (and mpmath)."""
+"""Branch-free polynomial sin/cos/exp of ship_gym.numerics.fastmath against numpy (and mpmath)."""
 
 import math
 import re
@@ -7,7 +7,7 @@ import numba as nb
 import numpy as np
 import pytest
 
-from ship_gym.forces.fastmath import (
+from ship_gym.numerics.fastmath import (
     cos_turns,
     cos_turns_f32,
     cos_turns_nonneg_f32,

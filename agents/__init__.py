@@ -1,1 +1,0 @@
-"""Reinforcement-learning agents for ship_gym: classical baselines, SB3 training, evaluation."""

@@ -1,0 +1,505 @@
+"""Evaluate policies (baselines and saved SB3 models) on identical seas.
+
+Every policy runs the same episodes: episode k is reset with ``seed + k`` (the env draws its sea,
+loading and initial state from that seed only), so differences between policies are the
+policies', not the weather's. The episodes run together in one batched vector env
+(``gymnasium.make_vec(id, num_envs=episodes, vectorization_mode="vector_entry_point")``, whose env
+k reset with seed s is the single env reset with seed s: :mod:`ship_gym.envs.base`); each env's
+first episode is recorded, then it is ignored until all have ended.
+
+Metrics per policy (mean over episodes):
+
+* ``capsize_rate`` — fraction of episodes ending by capsize (``info["capsized"]``, else
+  ``terminated``);
+* ``rms_roll_deg`` — RMS roll over each episode [deg] (``info["roll_deg"]`` when the env gives
+  it, else the ``"roll"`` observation), averaged over episodes;
+* ``rms_heading_error_deg`` — RMS of the ``"heading error"`` observation [deg] (NaN without it);
+* ``rms_vertical_acceleration_mps2`` — RMS earth-vertical acceleration at the passenger point
+  [m/s²] (``info["vertical_acceleration_mps2"]`` when the env gives it, else the ``"vertical
+  acceleration"`` observation; NaN without either): what ride control is judged by;
+* ``rms_action`` — effort: RMS of the actions over steps and action entries [-];
+* ``mean_return``, ``std_return``, ``mean_length`` [steps], ``mean_cost`` (Safe-RL cost per
+  episode).
+
+Results go to ``evaluation.csv`` (one row per policy), ``evaluation.json`` (also the
+per-episode values) and ``evaluation.png`` (one bar chart per metric) in the output directory.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import pickle
+import time
+import tomllib
+from collections.abc import Mapping, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Protocol
+
+import gymnasium
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = [
+    "METRICS",
+    "EpisodeStats",
+    "ModelPolicy",
+    "Policy",
+    "evaluate_policies",
+    "load_policy",
+    "run_episodes",
+    "summarize",
+    "write_results",
+]
+
+METRICS: tuple[str, ...] = (
+    "capsize_rate",
+    "rms_roll_deg",
+    "rms_heading_error_deg",
+    "rms_vertical_acceleration_mps2",
+    "rms_action",
+    "mean_return",
+    "mean_length",
+)
+"""The metrics plotted (and first in the CSV), in order."""
+
+ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
+
+
+class Policy(Protocol):
+    """Anything with SB3's ``predict`` signature (SB3 models, :mod:`ship_gym.agents.baselines`)."""
+
+    def predict(
+        self,
+        observation: NDArray,
+        state: Any = None,
+        episode_start: NDArray | None = None,
+        deterministic: bool = True,
+    ) -> tuple[NDArray, Any]: ...
+
+
+@dataclass(frozen=True)
+class EpisodeStats:
+    """Per-episode results of one policy (arrays over episodes, in seed order).
+
+    Attributes
+    ----------
+    seeds : NDArray
+        Reset seed of each episode.
+    returns : NDArray
+        Undiscounted return [-].
+    lengths : NDArray
+        Episode length [control steps].
+    capsized : NDArray
+        True when the episode ended by capsize.
+    rms_roll_deg : NDArray
+        RMS roll [deg] (NaN when the env shows no roll).
+    rms_heading_error_deg : NDArray
+        RMS heading error [deg] (NaN when the env has no heading-error observation).
+    rms_action : NDArray
+        RMS of all action entries over the episode [-].
+    cost : NDArray
+        Summed Safe-RL cost [-].
+    rms_vertical_acceleration_mps2 : NDArray
+        RMS vertical acceleration at the passenger point [m/s²] (NaN when the env shows none).
+    """
+
+    seeds: NDArray
+    returns: NDArray
+    lengths: NDArray
+    capsized: NDArray
+    rms_roll_deg: NDArray
+    rms_heading_error_deg: NDArray
+    rms_action: NDArray
+    cost: NDArray
+    rms_vertical_acceleration_mps2: NDArray
+
+
+class _SquaredSum:
+    """Per-episode Σx² and sample count of one quantity, from ``info[info_key]`` when the env
+    gives it, else from an observation (taken before the step, times ``factor``)."""
+
+    def __init__(self, n: int, info_key: str, obs_index: int, factor: float) -> None:
+        self.info_key = info_key
+        self.obs_index = obs_index
+        self.factor = factor
+        self.total = np.zeros(n)
+        self.count = np.zeros(n)
+
+    def add(self, infos: Mapping[str, Any], obs_before: NDArray, active: NDArray) -> None:
+        """Add one control step of the still-active episodes."""
+        if self.info_key in infos:
+            values = np.asarray(infos[self.info_key], float)
+        elif self.obs_index >= 0:
+            values = obs_before[:, self.obs_index] * self.factor
+        else:
+            return
+        self.total += np.where(active, values**2, 0.0)
+        self.count += active
+
+    def rms(self) -> NDArray:
+        """RMS per episode (NaN where nothing was measured)."""
+        if self.obs_index < 0 and not self.count.any():
+            return np.full(self.total.shape, np.nan)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.sqrt(self.total / self.count)
+
+
+def _obs_index(names: Sequence[str], keyword: str) -> tuple[int, float]:
+    """(index, factor to degrees) of an observation by name, (−1, nan) if absent."""
+    from ship_gym.agents.baselines import find_name
+
+    i = find_name(names, (keyword,), what=f"observation {keyword!r}", required=False)
+    if i is None:
+        return -1, math.nan
+    return i, (1.0 if "[deg" in names[i] else 180.0 / math.pi)
+
+
+def _vertical_acceleration_index(names: Sequence[str]) -> int:
+    """Index of the passenger vertical-acceleration observation [m/s²], −1 if absent."""
+    from ship_gym.agents.baselines import find_name
+
+    i = find_name(
+        names,
+        ("vertical acceleration",),
+        what="observation 'vertical acceleration'",
+        required=False,
+    )
+    return -1 if i is None else i
+
+
+def run_episodes(
+    env_id: str,
+    policy: Policy | Any,
+    seeds: Sequence[int],
+    env_kwargs: Mapping[str, Any] | None = None,
+    *,
+    deterministic: bool = True,
+    max_steps: int | None = None,
+    progress: bool = False,
+    label: str = "",
+) -> EpisodeStats:
+    """Run one episode per seed with ``policy`` (or a callable ``env -> policy``), batched.
+
+    Parameters
+    ----------
+    env_id : str
+        Registered id (``"ship_gym/RollOneDOF-v0"``; the ``"ship_gym:"`` prefix is optional).
+    policy : Policy or callable
+        An object with ``predict``, or a factory called with the vector env (baselines:
+        ``lambda env: make_baseline("fins", env)``).
+    seeds : sequence of int
+        One episode per seed (episode k reset with ``seeds[k]``).
+    env_kwargs : mapping, optional
+        Environment keyword arguments (the same for every policy, for a fair comparison).
+    deterministic : bool
+        Passed to ``predict``.
+    max_steps : int, optional
+        Override of the registered time limit [control steps].
+    progress : bool
+        Show a tqdm bar over control steps.
+    label : str
+        Name on the progress bar.
+    """
+    from gymnasium.vector import AutoresetMode
+
+    seeds = [int(s) for s in seeds]
+    if not seeds:
+        raise ValueError("seeds must hold at least one seed")
+    n = len(seeds)
+    full_id = env_id if ":" in env_id else f"ship_gym:{env_id}"
+    kwargs = dict(env_kwargs or {})
+    if max_steps is not None:
+        kwargs["max_episode_steps"] = int(max_steps)
+    env = gymnasium.make_vec(
+        full_id,
+        num_envs=n,
+        vectorization_mode="vector_entry_point",
+        autoreset_mode=AutoresetMode.SAME_STEP,
+        **kwargs,
+    )
+    try:
+        if not hasattr(policy, "predict"):
+            policy = policy(env)
+        if hasattr(policy, "reset"):
+            policy.reset()
+        names = tuple(env.unwrapped.observation_names)
+        i_roll, f_roll = _obs_index(names, "roll")
+        i_head, f_head = _obs_index(names, "heading error")
+        roll = _SquaredSum(n, "roll_deg", i_roll, f_roll)
+        vertical = _SquaredSum(
+            n, "vertical_acceleration_mps2", _vertical_acceleration_index(names), 1.0
+        )
+        limit = env.unwrapped.max_episode_steps
+        n_act = int(np.prod(env.single_action_space.shape))
+
+        obs, _ = env.reset(seed=seeds)
+        active = np.ones(n, dtype=bool)
+        returns = np.zeros(n)
+        lengths = np.zeros(n, dtype=np.int64)
+        capsized = np.zeros(n, dtype=bool)
+        cost = np.zeros(n)
+        head_sq = np.zeros(n)
+        act_sq = np.zeros(n)
+        state = None
+        episode_start = np.ones(n, dtype=bool)
+        bar = None
+        if progress:
+            from tqdm.auto import tqdm
+
+            bar = tqdm(total=limit, desc=f"evaluate {label}".strip(), unit="step", leave=False)
+        while active.any():
+            action, state = policy.predict(
+                obs, state=state, episode_start=episode_start, deterministic=deterministic
+            )
+            action = np.asarray(action, dtype=np.float64).reshape(n, n_act)
+            if i_head >= 0:
+                head_sq += np.where(active, (obs[:, i_head] * f_head) ** 2, 0.0)
+            obs_before = np.copy(obs)  # the env may refill its observation buffer
+            obs, reward, terminated, truncated, infos = env.step(np.clip(action, -1.0, 1.0))
+            episode_start = np.zeros(n, dtype=bool)
+            returns += np.where(active, reward, 0.0)
+            lengths += active
+            act_sq += np.where(active, np.mean(np.clip(action, -1, 1) ** 2, axis=1), 0.0)
+            if "cost" in infos:
+                cost += np.where(active, infos["cost"], 0.0)
+            roll.add(infos, obs_before, active)
+            vertical.add(infos, obs_before, active)
+            done = (np.asarray(terminated) | np.asarray(truncated)) & active
+            if done.any():
+                flag = infos.get("capsized", terminated)
+                capsized |= done & np.asarray(flag, dtype=bool) & np.asarray(terminated, bool)
+                active &= ~done
+            if bar is not None:
+                bar.update(1)
+        if bar is not None:
+            bar.close()
+    finally:
+        env.close()
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return EpisodeStats(
+            seeds=np.asarray(seeds),
+            returns=returns,
+            lengths=lengths,
+            capsized=capsized,
+            rms_roll_deg=roll.rms(),
+            rms_heading_error_deg=(
+                np.sqrt(head_sq / lengths) if i_head >= 0 else np.full(n, np.nan)
+            ),
+            rms_action=np.sqrt(act_sq / lengths),
+            cost=cost,
+            rms_vertical_acceleration_mps2=vertical.rms(),
+        )
+
+
+def summarize(stats: EpisodeStats) -> dict[str, float]:
+    """The metrics of :data:`METRICS` (and a few more) from per-episode results."""
+
+    def mean(a: NDArray) -> float:
+        a = np.asarray(a, dtype=float)
+        return float(np.mean(a)) if np.all(np.isfinite(a)) else math.nan
+
+    return {
+        "capsize_rate": float(np.mean(stats.capsized)),
+        "rms_roll_deg": mean(stats.rms_roll_deg),
+        "rms_heading_error_deg": mean(stats.rms_heading_error_deg),
+        "rms_vertical_acceleration_mps2": mean(stats.rms_vertical_acceleration_mps2),
+        "rms_action": mean(stats.rms_action),
+        "mean_return": float(np.mean(stats.returns)),
+        "mean_length": float(np.mean(stats.lengths)),
+        "std_return": float(np.std(stats.returns)),
+        "mean_cost": float(np.mean(stats.cost)),
+        "episodes": float(len(stats.returns)),
+    }
+
+
+@dataclass
+class ModelPolicy:
+    """A saved SB3 model (and its ``VecNormalize`` observation statistics, if any).
+
+    Attributes
+    ----------
+    model : stable_baselines3 BaseAlgorithm
+        The loaded model.
+    obs_normalizer : VecNormalize or None
+        Observation normalisation used in training (applied to raw observations here).
+    """
+
+    model: Any
+    obs_normalizer: Any = None
+    path: str = ""
+    _unused: dict = field(default_factory=dict, repr=False)
+
+    def predict(
+        self,
+        observation: NDArray,
+        state: Any = None,
+        episode_start: NDArray | None = None,
+        deterministic: bool = True,
+    ) -> tuple[NDArray, Any]:
+        obs = observation
+        if self.obs_normalizer is not None:
+            obs = self.obs_normalizer.normalize_obs(np.asarray(observation))
+        return self.model.predict(
+            obs, state=state, episode_start=episode_start, deterministic=deterministic
+        )
+
+
+def load_policy(path: str | Path, device: str = "cpu") -> ModelPolicy:
+    """Load a model saved by :mod:`ship_gym.agents.train` (a run directory or a ``.zip``).
+
+    The algorithm is read from the run's ``config.toml`` when present, else every SB3 algorithm
+    is tried. A ``vecnormalize.pkl`` beside the model is applied to the observations.
+    """
+    import stable_baselines3
+
+    p = Path(path)
+    run_dir = p if p.is_dir() else p.parent
+    zip_path = p / "model.zip" if p.is_dir() else p
+    if not zip_path.exists():
+        raise FileNotFoundError(f"no saved model at {zip_path}")
+    names: list[str] = list(ALGORITHMS)
+    config_path = run_dir / "config.toml"
+    if config_path.exists():
+        algo = tomllib.loads(config_path.read_text())["algorithm"]["name"].upper()
+        names = [algo]
+    model = None
+    errors = []
+    for name in names:
+        try:
+            model = getattr(stable_baselines3, name).load(zip_path, device=device)
+            break
+        except Exception as exc:  # wrong algorithm class: try the next
+            errors.append(f"{name}: {exc}")
+    if model is None:
+        raise ValueError(f"could not load {zip_path} with {names}: {errors}")
+    normalizer = None
+    norm_path = run_dir / "vecnormalize.pkl"
+    if norm_path.exists():
+        with open(norm_path, "rb") as fh:
+            normalizer = pickle.load(fh)
+        normalizer.training = False
+    return ModelPolicy(model=model, obs_normalizer=normalizer, path=str(zip_path))
+
+
+def _policy_factory(spec: str, device: str = "cpu") -> tuple[str, Any]:
+    """``"zero"``, ``"pid"``, ``"fins"``, ``"ride"`` or ``"model:PATH"`` → (label, factory)."""
+    from ship_gym.agents.baselines import BASELINES, make_baseline
+
+    spec = spec.strip()
+    if spec.startswith("model:"):
+        path = spec[len("model:") :]
+        policy = load_policy(path, device=device)
+        return f"model:{Path(path).name or path}", policy
+    if spec in BASELINES:
+        return spec, lambda env, name=spec: make_baseline(name, env)
+    raise ValueError(f"unknown policy {spec!r}: expected one of {sorted(BASELINES)} or model:PATH")
+
+
+def evaluate_policies(
+    env_id: str,
+    policies: Sequence[str],
+    episodes: int,
+    seed: int,
+    env_kwargs: Mapping[str, Any] | None = None,
+    *,
+    max_steps: int | None = None,
+    progress: bool = True,
+    device: str = "cpu",
+) -> dict[str, Any]:
+    """Evaluate each policy on episodes seeded ``seed … seed + episodes − 1``.
+
+    Returns
+    -------
+    dict
+        ``{"env_id", "seeds", "env_kwargs", "policies": {label: {metric: value, ...,
+        "episodes": {per-episode lists}}}, "wall_time_s": {label: s}}``.
+    """
+    if isinstance(episodes, bool) or not isinstance(episodes, int) or episodes < 1:
+        raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
+    if not policies:
+        raise ValueError("give at least one policy (zero, pid, fins, ride or model:PATH)")
+    seeds = list(range(int(seed), int(seed) + episodes))
+    out: dict[str, Any] = {
+        "env_id": env_id,
+        "seeds": seeds,
+        "env_kwargs": dict(env_kwargs or {}),
+        "max_steps": max_steps,
+        "policies": {},
+        "wall_time_s": {},
+    }
+    for spec in policies:
+        label, policy = _policy_factory(spec, device=device)
+        t0 = time.perf_counter()
+        stats = run_episodes(
+            env_id,
+            policy,
+            seeds,
+            env_kwargs,
+            max_steps=max_steps,
+            progress=progress,
+            label=label,
+        )
+        out["wall_time_s"][label] = time.perf_counter() - t0
+        metrics = summarize(stats)
+        metrics["per_episode"] = {
+            k: np.asarray(v).tolist() for k, v in asdict(stats).items() if k != "seeds"
+        }
+        out["policies"][label] = metrics
+    return out
+
+
+def write_results(results: Mapping[str, Any], out_dir: str | Path, *, plot: bool = True) -> Path:
+    """Write ``evaluation.csv``, ``evaluation.json`` and (``plot``) ``evaluation.png``."""
+    from ship_gym.io_utils import atomic_write, atomic_write_text
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    columns = [*METRICS, "std_return", "mean_cost", "episodes"]
+    buffer = io.StringIO()
+    writer = csv.writer(buffer)
+    writer.writerow(["policy", *columns])
+    for label, m in results["policies"].items():
+        writer.writerow([label, *(f"{m[c]:.6g}" for c in columns)])
+    atomic_write_text(out / "evaluation.csv", buffer.getvalue())
+    atomic_write_text(out / "evaluation.json", json.dumps(results, indent=2, default=_json_default))
+    if plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        from matplotlib.figure import Figure
+
+        labels = list(results["policies"])
+        fig = Figure(figsize=(3.0 * len(METRICS) / 2, 6.0))
+        axes = fig.subplots(2, math.ceil(len(METRICS) / 2)).ravel()
+        colours = [f"C{i}" for i in range(len(labels))]
+        for ax, metric in zip(axes, METRICS, strict=False):
+            values = [results["policies"][k][metric] for k in labels]
+            ax.bar(range(len(labels)), np.nan_to_num(values), color=colours)
+            if not np.any(np.isfinite(values)):
+                ax.text(0.5, 0.5, "not measured\nin this env", ha="center", transform=ax.transAxes)
+            ax.set_xticks(range(len(labels)), labels, rotation=30, ha="right", fontsize=7)
+            ax.set_title(metric, fontsize=8)
+            ax.tick_params(labelsize=7)
+            ax.grid(axis="y", alpha=0.3)
+        for ax in axes[len(METRICS) :]:
+            ax.set_visible(False)
+        fig.suptitle(
+            f"{results['env_id']}: {len(results['seeds'])} episodes, seeds "
+            f"{results['seeds'][0]}…{results['seeds'][-1]} (same seas for every policy)",
+            fontsize=9,
+        )
+        fig.tight_layout()
+        atomic_write(out / "evaluation.png", lambda p: fig.savefig(p, dpi=110, format="png"))
+    return out
+
+
+def _json_default(value: Any) -> Any:
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    return str(value)

@@ -1,0 +1,295 @@
+"""Train a stable-baselines3 agent on a ship_gym environment from a TOML configuration.
+
+Configuration (a TOML file, or the name of one shipped in :mod:`ship_gym.agents.configs`, e.g.
+``ppo_roll_one_dof``; every key except ``env.id`` has a default)::
+
+    [env]
+    id = "ship_gym/RollOneDOF-v0"
+    n_envs = 8                    # parallel episodes
+    vectorization = "vector"      # "vector": our batched env via ship_gym.envs.sb3 (one call
+                                  #   steps all episodes); "dummy": SB3 DummyVecEnv of single envs
+    normalize = false             # wrap in SB3 VecNormalize (observations and rewards)
+    [env.kwargs]                  # the environment's keyword arguments (physics, rewards)
+    forcing_amplitude = [0.02, 0.05]
+
+    [algorithm]
+    name = "PPO"                  # PPO, SAC, TD3, A2C or DDPG
+    policy = "MlpPolicy"
+    [algorithm.hyperparameters]   # keyword arguments of the algorithm
+    n_steps = 256
+    [algorithm.policy_kwargs]     # e.g. net_arch = [64, 64]
+
+    [training]
+    total_timesteps = 200_000
+    seed = 0
+    output_dir = "runs/ppo_roll_one_dof"
+    progress_bar = true           # SB3's tqdm + rich bar
+    tensorboard = true            # logs under <output_dir>/tensorboard
+    device = "cpu"
+    torch_threads = 1             # optional: torch CPU threads (small MLPs: 1 is fastest and
+                                  #   leaves the cores to the environment)
+
+A relative ``output_dir`` (or ``--output``) is taken from the working directory, whether the
+config is a file or a shipped name. The run directory receives ``model.zip``, ``config.toml`` (a
+copy of the configuration actually used, with command-line overrides), ``vecnormalize.pkl`` when
+``normalize`` is on, the tensorboard logs and ``summary.json`` (time steps, wall time, last mean
+episode return). All files are written atomically. :func:`ship_gym.agents.evaluate.load_policy`
+reads the directory back.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import time
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ship_gym.agents.configs import find_config
+
+__all__ = ["TrainConfig", "load_config", "make_training_env", "train"]
+
+ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
+VECTORIZATIONS = ("vector", "dummy")
+
+
+@dataclass(frozen=True)
+class TrainConfig:
+    """A validated training configuration (see the module docstring for the TOML layout)."""
+
+    env_id: str
+    n_envs: int = 8
+    vectorization: str = "vector"
+    normalize: bool = False
+    env_kwargs: Mapping[str, Any] = field(default_factory=dict)
+    algorithm: str = "PPO"
+    policy: str = "MlpPolicy"
+    hyperparameters: Mapping[str, Any] = field(default_factory=dict)
+    policy_kwargs: Mapping[str, Any] = field(default_factory=dict)
+    total_timesteps: int = 100_000
+    seed: int = 0
+    output_dir: str = "runs/run"
+    progress_bar: bool = True
+    tensorboard: bool = True
+    device: str = "cpu"
+    torch_threads: int | None = None
+    raw: Mapping[str, Any] = field(default_factory=dict, repr=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.env_id, str) or not self.env_id:
+            raise ValueError(f"env.id must be a registered env id, got {self.env_id!r}")
+        if not isinstance(self.n_envs, int) or self.n_envs < 1:
+            raise ValueError(f"env.n_envs must be a positive integer, got {self.n_envs!r}")
+        if self.vectorization not in VECTORIZATIONS:
+            raise ValueError(
+                f"env.vectorization must be one of {VECTORIZATIONS}, got {self.vectorization!r}"
+            )
+        if self.algorithm.upper() not in ALGORITHMS:
+            raise ValueError(f"algorithm.name must be one of {ALGORITHMS}, got {self.algorithm!r}")
+        if not isinstance(self.total_timesteps, int) or self.total_timesteps < 1:
+            raise ValueError(
+                f"training.total_timesteps must be a positive integer, got {self.total_timesteps!r}"
+            )
+        if not isinstance(self.seed, int):
+            raise ValueError(f"training.seed must be an integer, got {self.seed!r}")
+        if self.torch_threads is not None and (
+            not isinstance(self.torch_threads, int) or self.torch_threads < 1
+        ):
+            raise ValueError(
+                f"training.torch_threads must be a positive integer, got {self.torch_threads!r}"
+            )
+
+
+_KNOWN = {
+    "env": {"id", "n_envs", "vectorization", "normalize", "kwargs"},
+    "algorithm": {"name", "policy", "hyperparameters", "policy_kwargs"},
+    "training": {
+        "total_timesteps",
+        "seed",
+        "output_dir",
+        "progress_bar",
+        "tensorboard",
+        "device",
+        "torch_threads",
+    },
+}
+
+
+def config_from_mapping(data: Mapping[str, Any]) -> TrainConfig:
+    """Validate a parsed TOML mapping into a :class:`TrainConfig` (unknown keys → ValueError)."""
+    unknown_sections = set(data) - set(_KNOWN)
+    if unknown_sections:
+        raise ValueError(
+            f"unknown config sections {sorted(unknown_sections)}; expected {sorted(_KNOWN)}"
+        )
+    for section, keys in _KNOWN.items():
+        extra = set(data.get(section, {})) - keys
+        if extra:
+            raise ValueError(
+                f"unknown keys {sorted(extra)} in [{section}]; expected {sorted(keys)}"
+            )
+    env = data.get("env", {})
+    algo = data.get("algorithm", {})
+    training = data.get("training", {})
+    if "id" not in env:
+        raise ValueError('the config needs [env] id = "ship_gym/<Name>-vN"')
+    return TrainConfig(
+        env_id=env["id"],
+        n_envs=env.get("n_envs", 8),
+        vectorization=env.get("vectorization", "vector"),
+        normalize=bool(env.get("normalize", False)),
+        env_kwargs=dict(env.get("kwargs", {})),
+        algorithm=str(algo.get("name", "PPO")).upper(),
+        policy=algo.get("policy", "MlpPolicy"),
+        hyperparameters=dict(algo.get("hyperparameters", {})),
+        policy_kwargs=dict(algo.get("policy_kwargs", {})),
+        total_timesteps=int(training.get("total_timesteps", 100_000)),
+        seed=training.get("seed", 0),
+        output_dir=str(training.get("output_dir", "runs/run")),
+        progress_bar=bool(training.get("progress_bar", True)),
+        tensorboard=bool(training.get("tensorboard", True)),
+        device=str(training.get("device", "cpu")),
+        torch_threads=training.get("torch_threads"),
+        raw=copy.deepcopy(dict(data)),
+    )
+
+
+def load_config(path: str | Path, **overrides: Any) -> TrainConfig:
+    """Read a TOML config: a file, or the name of a shipped config (``"ppo_roll_one_dof"``;
+    :func:`ship_gym.agents.configs.find_config`). ``overrides`` (``total_timesteps``, ``seed``,
+    ``output_dir``, ``progress_bar``, ``n_envs``, ``device``) replace the file's values when not
+    None."""
+    p = find_config(path)
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{p}: invalid TOML: {exc}") from None
+    places = {
+        "total_timesteps": "training",
+        "seed": "training",
+        "output_dir": "training",
+        "progress_bar": "training",
+        "tensorboard": "training",
+        "device": "training",
+        "n_envs": "env",
+    }
+    for key, value in overrides.items():
+        if key not in places:
+            raise ValueError(f"cannot override {key!r}; allowed: {sorted(places)}")
+        if value is not None:
+            data.setdefault(places[key], {})[key] = value
+    return config_from_mapping(data)
+
+
+def make_training_env(config: TrainConfig) -> Any:
+    """The SB3 VecEnv of a config: batched adapter or DummyVecEnv, VecMonitor, VecNormalize."""
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    from ship_gym.envs.sb3 import make_sb3_vec_env
+
+    venv = make_sb3_vec_env(
+        config.env_id,
+        config.n_envs,
+        seed=config.seed,
+        vectorization=config.vectorization,
+        env_kwargs=dict(config.env_kwargs),
+    )
+    if config.normalize:
+        # the reward normaliser discounts with the algorithm's gamma (SB3 default 0.99)
+        venv = VecNormalize(venv, gamma=float(config.hyperparameters.get("gamma", 0.99)))
+    return venv
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int | float):
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + "}"
+    raise ValueError(f"cannot write {value!r} to TOML")
+
+
+def dump_toml(data: Mapping[str, Any]) -> str:
+    """A small TOML writer for configs (tables of scalars, arrays and inline tables)."""
+    lines: list[str] = []
+
+    def table(prefix: str, mapping: Mapping[str, Any]) -> None:
+        scalars = {k: v for k, v in mapping.items() if not isinstance(v, Mapping)}
+        tables = {k: v for k, v in mapping.items() if isinstance(v, Mapping)}
+        if prefix:
+            lines.append(f"[{prefix}]")
+        lines.extend(f"{k} = {_toml_value(v)}" for k, v in scalars.items())
+        lines.append("")
+        for k, v in tables.items():
+            table(f"{prefix}.{k}" if prefix else k, v)
+
+    table("", data)
+    return "\n".join(lines).strip() + "\n"
+
+
+def train(config: TrainConfig) -> Path:
+    """Train per ``config``; return the run directory (see the module docstring for its files)."""
+    import stable_baselines3
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    from ship_gym.io_utils import atomic_write, atomic_write_text
+
+    if config.torch_threads is not None:
+        import torch
+
+        torch.set_num_threads(config.torch_threads)
+    out = Path(config.output_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    atomic_write_text(out / "config.toml", dump_toml(config.raw))
+    venv = make_training_env(config)
+    algo_class = getattr(stable_baselines3, config.algorithm)
+    kwargs = dict(config.hyperparameters)
+    if config.policy_kwargs:
+        kwargs["policy_kwargs"] = dict(config.policy_kwargs)
+    model = algo_class(
+        config.policy,
+        venv,
+        seed=config.seed,
+        device=config.device,
+        verbose=0,
+        tensorboard_log=str(out / "tensorboard") if config.tensorboard else None,
+        **kwargs,
+    )
+    t0 = time.perf_counter()
+    try:
+        model.learn(
+            total_timesteps=config.total_timesteps,
+            progress_bar=config.progress_bar,
+            tb_log_name=config.algorithm.lower(),
+        )
+    finally:
+        wall = time.perf_counter() - t0
+        atomic_write(out / "model.zip", lambda p: model.save(p))
+        if isinstance(venv, VecNormalize):
+            atomic_write(out / "vecnormalize.pkl", lambda p: venv.save(p))
+        episodes = list(model.ep_info_buffer or [])
+        summary = {
+            "env_id": config.env_id,
+            "algorithm": config.algorithm,
+            "num_timesteps": int(model.num_timesteps),
+            "wall_time_s": wall,
+            "steps_per_s": model.num_timesteps / wall if wall > 0 else None,
+            "recent_episodes": len(episodes),
+            "recent_mean_return": (
+                float(sum(e["r"] for e in episodes) / len(episodes)) if episodes else None
+            ),
+            "recent_mean_length": (
+                float(sum(e["l"] for e in episodes) / len(episodes)) if episodes else None
+            ),
+        }
+        atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
+        venv.close()
+    return out

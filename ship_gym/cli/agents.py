@@ -1,0 +1,120 @@
+"""``ship-gym train`` and ``ship-gym evaluate``: reinforcement learning on the ship_gym envs.
+
+``train CONFIG`` trains a stable-baselines3 agent from a TOML configuration: a path, or the name
+of a config shipped in :mod:`ship_gym.agents` (``ppo_roll_one_dof``, …; see
+:mod:`ship_gym.agents.train`). ``evaluate`` runs classical baselines and saved models on the same
+seeded seas and writes a table, JSON and a bar chart (:mod:`ship_gym.agents.evaluate`).
+stable-baselines3 and torch are imported inside the commands, so ``ship-gym --help`` stays
+instant; they need the ``agents`` extra (``pip install -e .[agents]``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+
+from ship_gym.agents.configs import shipped_config_names
+from ship_gym.cli.common import add_overrides_argument, parse_overrides
+
+
+def add_commands(sub: argparse._SubParsersAction) -> None:
+    """Register ``train`` and ``evaluate`` on the ``ship-gym`` parser."""
+    p = sub.add_parser("train", help="train an SB3 agent (PPO, SAC…) from a TOML config")
+    p.add_argument(
+        "config",
+        help="TOML configuration: a path, or the name of a shipped config ("
+        + ", ".join(shipped_config_names())
+        + "); relative paths inside it (output_dir) are from the working directory",
+    )
+    p.add_argument("--timesteps", type=int, default=None, help="override total_timesteps")
+    p.add_argument("--seed", type=int, default=None, help="override the seed")
+    p.add_argument("--output", default=None, help="override the run directory")
+    p.add_argument("--n-envs", type=int, default=None, help="override the number of episodes")
+    p.add_argument("--device", default=None, help="torch device (cpu, cuda)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.set_defaults(func=_cmd_train)
+
+    p = sub.add_parser(
+        "evaluate", help="compare baselines and trained models on the same seeded seas"
+    )
+    p.add_argument("--env", required=True, help="env id, e.g. ship_gym/RollOneDOF-v0")
+    p.add_argument(
+        "--policies",
+        default="zero",
+        help="comma-separated: zero, pid, fins, ride, model:RUN_DIR_OR_ZIP (default: zero)",
+    )
+    p.add_argument("--episodes", type=int, default=20, help="episodes per policy")
+    p.add_argument("--seed", type=int, default=0, help="episode k is reset with seed + k")
+    p.add_argument("--max-steps", type=int, default=None, help="override the time limit")
+    add_overrides_argument(p, "env keyword arguments (JSON values), e.g. forcing_amplitude=0.04")
+    p.add_argument("--out", default="out/evaluation", help="directory for CSV, JSON and PNG")
+    p.add_argument("--no-plot", action="store_true", help="skip the bar chart")
+    p.add_argument("--no-progress", action="store_true", help="no progress bars")
+    p.add_argument("--json", default=None, help="also write the results JSON to this path")
+    p.set_defaults(func=_cmd_evaluate)
+
+
+def _cmd_train(args: argparse.Namespace) -> int:
+    from ship_gym.agents.train import load_config, train
+
+    config = load_config(
+        args.config,
+        total_timesteps=args.timesteps,
+        seed=args.seed,
+        output_dir=args.output,
+        n_envs=args.n_envs,
+        device=args.device,
+        progress_bar=False if args.no_progress else None,
+    )
+    print(
+        f"training {config.algorithm} on {config.env_id}: {config.n_envs} episodes "
+        f"({config.vectorization}), {config.total_timesteps} steps, seed {config.seed} → "
+        f"{config.output_dir}"
+    )
+    out = train(config)
+    summary = json.loads((out / "summary.json").read_text())
+    mean = summary["recent_mean_return"]
+    print(
+        f"done: {summary['num_timesteps']} steps in {summary['wall_time_s']:.0f} s "
+        f"({summary['steps_per_s']:.0f} steps/s); recent mean return "
+        f"{'n/a' if mean is None else f'{mean:.2f}'}; model {out / 'model.zip'}"
+    )
+    return 0
+
+
+def _cmd_evaluate(args: argparse.Namespace) -> int:
+    from ship_gym.agents.evaluate import METRICS, evaluate_policies, write_results
+    from ship_gym.io_utils import atomic_write_text
+
+    policies = [p for p in args.policies.split(",") if p.strip()]
+    results = evaluate_policies(
+        args.env,
+        policies,
+        args.episodes,
+        args.seed,
+        parse_overrides(args.set),
+        max_steps=args.max_steps,
+        progress=not args.no_progress,
+    )
+    out = write_results(results, args.out, plot=not args.no_plot)
+    width = max(len(k) for k in results["policies"]) + 2
+    print(
+        f"{args.env}: {args.episodes} episodes, seeds {args.seed}…{args.seed + args.episodes - 1}"
+    )
+    column = max(len(k) for k in METRICS) + 2
+    print("policy".ljust(width) + "".join(k.rjust(column) for k in METRICS))
+    for label, m in results["policies"].items():
+        cells = "".join(
+            ("n/a" if math.isnan(m[k]) else f"{m[k]:.4g}").rjust(column) for k in METRICS
+        )
+        print(label.ljust(width) + cells)
+    print(
+        f"wrote {out / 'evaluation.csv'}, evaluation.json"
+        + ("" if args.no_plot else ", evaluation.png")
+    )
+    if args.json:
+        atomic_write_text(Path(args.json), (out / "evaluation.json").read_text())
+        print(f"wrote {args.json}")
+    return 0

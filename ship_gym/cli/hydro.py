@@ -1,0 +1,148 @@
+"""``ship-gym hydro`` (build a BEM database) and ``ship-gym kernels`` (retardation diagnostics)."""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ship_gym.cli.common import add_overrides_argument, parse_overrides, write_json
+
+
+def add_commands(sub: argparse._SubParsersAction) -> None:
+    """Register the hydrodynamic subcommands on the ``ship-gym`` parser."""
+    p = sub.add_parser("hydro", help="compute a hydrodynamic database with capytaine (BEM)")
+    p.add_argument("hull", help="library hull: s175, box_barge, hemisphere or wigley")
+    p.add_argument("--output", required=True, help="NetCDF file to write (atomically)")
+    add_overrides_argument(p, "hull builder overrides (mesh resolution, loading)")
+    p.add_argument(
+        "--omega-max",
+        type=float,
+        default=None,
+        help="largest finite frequency [rad/s] (default: what the mesh resolves)",
+    )
+    p.add_argument("--n-omega", type=int, default=40, help="number of finite frequencies")
+    p.add_argument(
+        "--headings",
+        type=float,
+        nargs="*",
+        default=None,
+        help="wave headings [deg], ours: 0 following, 180 head seas",
+    )
+    p.add_argument("--n-jobs", type=int, default=1, help="parallel BEM jobs (joblib)")
+    p.set_defaults(func=_cmd_hydro)
+
+    k = sub.add_parser("kernels", help="retardation functions of a database, with diagnostics")
+    k.add_argument("database", help="'s175' (bundled) or a NetCDF database")
+    k.add_argument("--t-max", type=float, default=60.0, help="kernel duration [s]")
+    k.add_argument("--dt", type=float, default=0.05, help="kernel time step [s]")
+    k.add_argument("--method", default="filon", choices=["filon", "simpson", "trapezoid", "fft"])
+    k.add_argument("--tail", default="power", choices=["none", "power", "taper"])
+    k.add_argument("--plot", default="out/kernels.png", help="figure of K, L and reconstructions")
+    k.add_argument("--json", default=None, help="write diagnostics to this JSON file")
+    k.set_defaults(func=_cmd_kernels)
+
+
+def _cmd_hydro(args: argparse.Namespace) -> int:
+    from ship_gym.hull import load_hull
+    from ship_gym.hydro.bem import compute_hull_database
+    from ship_gym.hydro.checks import validate_database
+    from ship_gym.hydro.database import save_database
+
+    hull = load_hull(args.hull, **parse_overrides(args.set))
+    headings = None if args.headings is None else np.radians(args.headings)
+    start = time.perf_counter()
+    ds = compute_hull_database(
+        hull,
+        n_omega=args.n_omega,
+        omega_max=args.omega_max,
+        wave_directions=headings,
+        n_jobs=args.n_jobs,
+    )
+    elapsed = time.perf_counter() - start
+    report = validate_database(ds)
+    save_database(ds, args.output)
+    print(
+        f"{hull.name}: {ds.attrs.get('n_panels')} panels, {ds.sizes['omega']} frequencies, "
+        f"{ds.sizes['wave_direction']} headings in {elapsed:.1f} s → {args.output}"
+    )
+    for key, value in report.items():
+        print(f"  {key}: {value}")
+    return 0
+
+
+def _cmd_kernels(args: argparse.Namespace) -> int:
+    from ship_gym.hydro.database import as_arrays, load_database
+    from ship_gym.hydro.retardation import (
+        compute_kernels,
+        kernel_decay,
+        plot_kernels,
+        plot_reconstruction,
+        reconstruction_error,
+    )
+
+    ds = load_database(args.database)
+    arr = as_arrays(ds)
+    kernels = compute_kernels(
+        arr.omega,
+        arr.added_mass,
+        arr.radiation_damping,
+        arr.added_mass_infinite,
+        t_max=args.t_max,
+        dt=args.dt,
+        method=args.method,
+        tail=args.tail,
+    )
+    decay = kernel_decay(kernels.t, kernels.K)
+    err = reconstruction_error(
+        kernels.t,
+        kernels.K,
+        arr.omega,
+        arr.added_mass,
+        arr.radiation_damping,
+        arr.added_mass_infinite,
+    )
+    print(
+        f"kernels of {args.database}: t ∈ [0, {args.t_max}] s, dt {args.dt} s, "
+        f"method {args.method}, tail {args.tail}"
+    )
+    print(
+        f"  decay |K(t_end)|/max|K| worst pair: {np.nanmax(decay.ratio):.3g} "
+        f"(all decayed below {decay.threshold}: {decay.all_decayed})"
+    )
+    print(f"  Ogilvie reconstruction, worst relative error over resolved ω: {err.max_error:.3g}")
+    if args.plot:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        pairs = (("Sway", "Sway"), ("Heave", "Heave"), ("Roll", "Roll"), ("Pitch", "Pitch"))
+        fig, axes = plt.subplots(1 + len(pairs), 2, figsize=(11, 3.0 * (1 + len(pairs))))
+        plot_kernels(kernels, pairs, axes=axes[0])
+        for row, pair in zip(axes[1:], pairs, strict=True):
+            plot_reconstruction(
+                arr.omega,
+                arr.added_mass,
+                arr.radiation_damping,
+                err.added_mass_reconstructed,
+                err.damping_reconstructed,
+                pair,
+                omega_reconstructed=err.omega,
+                axes=row,
+            )
+        fig.tight_layout()
+        Path(args.plot).parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(args.plot, dpi=110)
+        print(f"wrote {args.plot}")
+    write_json(
+        args.json,
+        {
+            "max_reconstruction_error": float(err.max_error),
+            "max_decay_ratio": float(np.nanmax(decay.ratio)),
+            "all_decayed": bool(decay.all_decayed),
+        },
+    )
+    return 0

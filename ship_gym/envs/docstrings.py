@@ -1,0 +1,179 @@
+"""The environments' docstrings, composed from shared pieces written once: the observation table
+of the common entries, the keyword table rows and the registered time limit.
+"""
+
+from __future__ import annotations
+
+import inspect
+import re
+from collections.abc import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, TypeVar
+
+from ship_gym.envs.registration import max_episode_steps
+
+if TYPE_CHECKING:
+    pass
+
+
+# =============================================================================================
+# the environments' docstrings: shared pieces, written once
+# =============================================================================================
+SHIP_OBSERVATION_TABLE = """\
+| # | name | unit | bound |
+|---|---|---|---|
+| 0 | roll φ | rad | ±π |
+| 1 | pitch θ | rad | ±π/2 |
+| 2 | heave (from the calm-water equilibrium, down positive) | m | ±30 |
+| 3–5 | roll rate p, pitch rate q, heave velocity w (body) | rad/s, rad/s, m/s | 5, 5, 30 |
+| 6 | yaw rate r | rad/s | ±2 |
+| 7–8 | surge speed u, sway velocity v | m/s | ±30 |
+| 9 | heading error wrap(ψ_ref − ψ) | rad | ±π |
+| 10–11 | cos β, sin β of the mean relative wave heading β = χ − ψ | - | ±1 |
+| 12 | rudder angle (servo) | rad | ±π/2 |
+| 13 | shaft speed | rev/s | ±20 |"""
+"""Markdown rows of the common observation entries 0–13 of every S175 task (the names and
+bounds of ``_BASE_OBSERVATIONS``, the rudder angle and the shaft speed)."""
+
+SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
+    # name: (unit, meaning); an environment may give its own meaning for any of them
+    "froude_number": ("-", "reference speed U = Fn √(g L) (radiation, diffraction, propeller)"),
+    "speed_range_mps": ("m/s", "initial speed range (self-propulsion rpm); keep near U"),
+    "hs_range_m": ("m", "significant wave height range"),
+    "tp_range_s": ("s", "peak period range"),
+    "wave_heading_range_deg": ("deg", "relative wave heading β (0 following, 180 head seas)"),
+    "n_wave_components": ("-", "components of the irregular sea"),
+    "wave_spreading_s": ("-", "cos-2s spreading exponent (None: long-crested)"),
+    "wave_ramp_time_s": ("s", "start-up ramp of the waves (Matusiak 2003, eq. 12)"),
+    "gm_range_m": ("m", "GM range of the loading (per episode; None: nominal)"),
+    "kg_m": ("m", "KG of the nominal loading (None: 9.55 m)"),
+    "passenger_point_m": ("m", "body-frame passenger position (z down)"),
+    "physics_dt_s": ("s", "physics time step"),
+    "control_dt_s": ("s", "control step (integer multiple of physics_dt_s)"),
+    "integrator": ("-", '"holloway" (1 force evaluation/step) or "rk4" (4)'),
+    "hull_mesh": ("-", "S175 mesh (sections, panels below/above water, deck)"),
+    "precision": ("-", '"float32" or "float64" wave sums of the Froude–Krylov kernel'),
+    "num_threads": ("-", "numba threads over the batch's ships (1: serial)"),
+    "capsize_angle_deg": ("deg", "capsize roll angle (None: vanishing angle of the loading)"),
+    "dangerous_roll_deg": ("deg", "roll angle of the Safe-RL cost"),
+    "heading_weight": ("-", "weight of the heading term"),
+    "heading_scale_deg": ("deg", "heading error scale"),
+    "roll_weight": ("-", "weight of the roll term"),
+    "roll_scale_deg": ("deg", "roll scale"),
+    "effort_weight": ("-", "weight of the actuator effort term"),
+    "capsize_penalty": ("-", "penalty paid at capsize"),
+    "comfort_time_constant_s": ("s", "time constant of the running acceleration RMS"),
+    "sensor_noise": ("-", "multiplier of the sensor accuracies (SENSOR_NOISE_STD)"),
+    "wave_preview_m": ("m", "distances ahead of O of the elevation preview"),
+}
+"""Unit and meaning of the keyword arguments shared by the ship environments (the rows of the
+``## Arguments`` tables; :func:`env_docstring` takes each default from the task's signature)."""
+
+
+def _format_default(value: Any) -> str:
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, float):
+        return f"{value:g}" if value != 0.0 else "0"
+    if isinstance(value, tuple):
+        return "(" + ", ".join(_format_default(v) for v in value) + ")"
+    return repr(value)
+
+
+def _task_parameters(task_class: type) -> list[inspect.Parameter]:
+    """The keyword arguments of ``task_class.__init__`` after ``num_envs``."""
+    params = list(inspect.signature(task_class.__init__).parameters.values())
+    return [p for p in params[1:] if p.name != "num_envs"]
+
+
+def arguments_table(task_class: type, rows: Mapping[str, tuple[str, str]]) -> str:
+    """The ``## Arguments`` markdown table of a task: every keyword argument of its
+    ``__init__`` in signature order, its default, and (unit, meaning) from ``rows`` or else
+    :data:`SHIP_ARGUMENTS`.
+
+    Raises
+    ------
+    ValueError
+        A keyword argument without a documented unit and meaning.
+    """
+    known = {**SHIP_ARGUMENTS, **rows}
+    lines = ["| kwarg | default | unit | meaning |", "|---|---|---|---|"]
+    for p in _task_parameters(task_class):
+        if p.name not in known:
+            raise ValueError(f"{task_class.__name__} keyword {p.name!r} has no documented unit")
+        unit, meaning = known[p.name]
+        lines.append(f"| {p.name} | {_format_default(p.default)} | {unit} | {meaning} |")
+    return "\n".join(lines)
+
+
+def _time_limit(name: str, task_class: type) -> str:
+    steps = max_episode_steps(name)
+    defaults = {p.name: p.default for p in _task_parameters(task_class)}
+    dt = defaults.get("control_dt_s", defaults.get("control_dt"))
+    return f"``MAX_EPISODE_STEPS`` = {steps} control steps = {steps * dt:g} s at the default step"
+
+
+def _fill(doc: str, marker: str, text: str) -> str:
+    """Replace ``{marker}`` in ``doc``, indenting the lines of ``text`` like the marker."""
+    found = re.search(rf"^([ \t]*)(.*?)\{{{marker}\}}", doc, re.MULTILINE)
+    if found is None:
+        raise ValueError(f"docstring has no {{{marker}}} marker")
+    indent = found.group(1)
+    return doc.replace(f"{{{marker}}}", text.replace("\n", "\n" + indent), 1)
+
+
+_EnvType = TypeVar("_EnvType", bound=type)
+
+
+def env_docstring(
+    arguments: Mapping[str, tuple[str, str]] | None = None,
+    version_history: Sequence[str] = (
+        "v0: initial version.",
+        "v1: one compiled engine call per control step; servos sampled at each physics step "
+        "and advanced by the exact solution of their lag and rate limit (v0 integrated them as "
+        "ODE states: under Holloway's scheme a constant command cycled); float32 wave sums by "
+        "default (docs/accuracy/results.md: ≤ 3e-5 % on every motion statistic).",
+    ),
+) -> Callable[[_EnvType], _EnvType]:
+    """Class decorator completing a ship environment's Gymnasium v5 docstring.
+
+    The class docstring holds the sections Description … Episode End; this fills the markers
+    ``{ship_observations}`` (:data:`SHIP_OBSERVATION_TABLE`) and ``{time_limit}`` (the
+    registered ``MAX_EPISODE_STEPS`` of ``<Name>Env`` and its duration at the default control
+    step) where it has them, and appends ``## Arguments`` (:func:`arguments_table` of the
+    class's ``task_class``, with the environment's own ``arguments`` rows, name → (unit,
+    meaning)) and ``## Version History``.
+    """
+
+    def decorate(cls: _EnvType) -> _EnvType:
+        task_class = cls.task_class  # type: ignore[attr-defined]
+        name = cls.__name__.removesuffix("Env")
+        doc = (cls.__doc__ or "").rstrip()
+        if "{ship_observations}" in doc:
+            doc = _fill(doc, "ship_observations", SHIP_OBSERVATION_TABLE)
+        if "{time_limit}" in doc:
+            doc = _fill(doc, "time_limit", _time_limit(name, task_class))
+        sections = [
+            "## Arguments",
+            arguments_table(task_class, arguments or {}),
+            "## Version History",
+            "\n".join(f"* {line}" for line in version_history),
+        ]
+        cls.__doc__ = doc + "".join(_indent(f"\n\n{part}") for part in sections) + "\n    "
+        return cls
+
+    return decorate
+
+
+def _indent(text: str, indent: str = "    ") -> str:
+    """Indent the lines of a docstring fragment like a class docstring's body."""
+    return "\n".join(indent + line if line else line for line in text.split("\n"))
+
+
+def vector_env_docstring(env_class: type) -> str:
+    """The docstring of the vector face of ``env_class`` (N episodes, seeds s + i)."""
+    return (
+        f"N episodes of :class:`{env_class.__name__}` in one BatchSimulator (same keyword "
+        "arguments).\n\n"
+        "    Episode i reset with ``seed=s`` is the single environment reset with "
+        "``seed=s + i``.\n    "
+    )

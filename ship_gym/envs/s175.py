@@ -1,0 +1,263 @@
+"""The S175 ship tasks: mesh presets, the :class:`~ship_gym.engine.ship.ShipSetup` of the S175 and
+:class:`S175Task`, the ship task built from the keyword arguments every ship environment shares.
+"""
+
+from __future__ import annotations
+
+import abc
+import dataclasses
+import math
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ship_gym.conventions import GRAVITY
+from ship_gym.envs.seas import SeaSampler
+from ship_gym.envs.ship_task import ShipTask, StepStatistics
+from ship_gym.typing import IntegratorName, Precision
+
+if TYPE_CHECKING:
+    from ship_gym.engine.ship import ShipSetup
+
+
+S175_MESH: tuple[int, int, int, int] = (60, 12, 6, 4)
+"""Default S175 mesh resolution (n_sections, n_below, n_above, n_deck): 2400 panels, the
+library hull's. Against a 9600-panel mesh (``docs/accuracy/results.md``): GZ within 2.4 mm, roll
+period −0.28 %, RMS roll +2.8 % in a stern-quartering sea near roll resonance."""
+
+S175_MESH_FAST: tuple[int, int, int, int] = (50, 10, 4, 2)
+"""The fastest mesh the accuracy study admits: 1500 panels, ≈ 1.6× faster than
+:data:`S175_MESH`; GZ within 4.2 mm and roll period −0.43 %, but RMS roll +4.5 % near roll
+resonance (``docs/accuracy/results.md``)."""
+
+S175_MESH_FINE: tuple[int, int, int, int] = (90, 18, 9, 6)
+"""5400 panels: RMS motions within 0.3 % of a 9600-panel mesh at ≈ 1.5× the cost of
+:data:`S175_MESH` (``docs/accuracy/results.md``)."""
+
+RUDDER_LIMIT_DEG = 35.0
+"""Rudder angle limit of the servo [deg] (:data:`ship_gym.control.actuators.RUDDER_SERVO`)."""
+
+
+def s175_setup(
+    *,
+    froude_number: float,
+    physics_dt: float,
+    integrator: str,
+    rudder: Literal["command", "autopilot"],
+    hull_mesh: Sequence[int],
+    kg: float | None,
+    precision: Precision = "float32",
+) -> ShipSetup:
+    """The S175 setup of the ship tasks: state-space radiation memory, diffraction, Ikeda roll
+    damping, propulsion (Holtrop resistance + B-series propeller), manoeuvring forces and a
+    rudder behind its servo (commanded, or under the heading autopilot).
+
+    Parameters
+    ----------
+    froude_number : float
+        Reference Froude number Fn = U/√(g Lpp) [-] (0.05 … 0.5).
+    physics_dt : float
+        Physics time step [s] (0.01 … 0.5).
+    integrator : {"holloway", "rk4"}
+        Holloway's μ-Taylor scheme (1 force evaluation per step) or RK4 (4).
+    rudder : {"command", "autopilot"}
+        Rudder following ``"rudder_command"`` or the PID heading autopilot (``"heading"``).
+    hull_mesh : sequence of 4 int
+        S175 mesh (n_sections, n_below, n_above, n_deck); :data:`S175_MESH` is the default.
+    kg : float or None
+        KG of the loading [m] (None: 9.55 m, the ITTC condition, GM ≈ 1.0 m).
+    precision : {"float32", "float64"}
+        Wave sums of the Froude–Krylov kernel (``fk_method`` "fast32" or "fast").
+    """
+    from ship_gym.engine.ship import ShipSetup
+
+    if not (isinstance(froude_number, int | float) and 0.05 <= froude_number <= 0.5):
+        raise ValueError(f"froude_number must be in [0.05, 0.5] [-], got {froude_number!r}")
+    if not (isinstance(physics_dt, int | float) and 0.01 <= physics_dt <= 0.5):
+        raise ValueError(f"physics_dt must be in [0.01, 0.5] [s], got {physics_dt!r}")
+    if integrator not in ("holloway", "rk4"):
+        raise ValueError(f"integrator must be 'holloway' or 'rk4', got {integrator!r}")
+    if precision not in ("float32", "float64"):
+        raise ValueError(f"precision must be 'float32' or 'float64', got {precision!r}")
+    mesh = tuple(hull_mesh) if isinstance(hull_mesh, Sequence) else ()
+    if len(mesh) != 4 or not all(
+        isinstance(v, int | np.integer) and not isinstance(v, bool) and v >= 2 for v in mesh
+    ):
+        raise ValueError(
+            f"hull_mesh must be 4 integers >= 2 (n_sections, n_below, n_above, n_deck), "
+            f"got {hull_mesh!r}"
+        )
+    overrides: dict[str, Any] = {}
+    if mesh != S175_MESH:  # the library hull's own mesh
+        overrides.update(
+            n_sections=int(mesh[0]),
+            n_below=int(mesh[1]),
+            n_above=int(mesh[2]),
+            n_deck=int(mesh[3]),
+        )
+    if kg is not None:
+        if not (isinstance(kg, int | float) and 5.0 <= kg <= 12.0):
+            raise ValueError(f"kg must be in [5, 12] [m] (S175 depth 15.4 m), got {kg!r}")
+        overrides["kg"] = float(kg)
+    speed = float(froude_number) * math.sqrt(GRAVITY * 175.0)
+    return ShipSetup(
+        hull="s175",
+        hull_overrides=overrides,
+        database="s175",
+        speed=speed,
+        radiation="state_space",
+        diffraction=True,
+        viscous_roll=True,
+        integrator=integrator,  # type: ignore[arg-type]
+        dt=float(physics_dt),
+        propulsion=True,
+        manoeuvring=True,
+        rudder=rudder,
+        fk_method="fast32" if precision == "float32" else "fast",
+    )
+
+
+# =============================================================================================
+# the S175 task built from the environments' shared keyword arguments
+# =============================================================================================
+SHIP_KWARGS: tuple[str, ...] = (
+    "froude_number",
+    "speed_range_mps",
+    "gm_range_m",
+    "kg_m",
+    "physics_dt_s",
+    "control_dt_s",
+    "integrator",
+    "hull_mesh",
+    "precision",
+    "num_threads",
+    "capsize_angle_deg",
+    "dangerous_roll_deg",
+    "capsize_penalty",
+    "sensor_noise",
+    "wave_preview_m",
+)
+"""The environment keyword arguments :class:`S175Task` takes as they are (:func:`ship_kwargs`)."""
+
+
+def ship_kwargs(values: Mapping[str, Any]) -> dict[str, Any]:
+    """The :data:`SHIP_KWARGS` among an environment task's arguments (its ``locals()``).
+
+    Every ship environment task declares its keyword arguments explicitly (typed, with units,
+    with its own defaults) and forwards the shared ones to :class:`S175Task` by name with this.
+    """
+    return {key: values[key] for key in SHIP_KWARGS if key in values}
+
+
+def irregular_sea(values: Mapping[str, Any]) -> SeaSampler:
+    """The JONSWAP :class:`SeaSampler` of an environment task's irregular-sea arguments
+    ``hs_range_m``, ``tp_range_s``, ``wave_heading_range_deg``, ``n_wave_components``,
+    ``wave_spreading_s`` and ``wave_ramp_time_s`` (in ``values``, its ``locals()``)."""
+    return SeaSampler(
+        kind="irregular",
+        height_range=values["hs_range_m"],
+        period_range=values["tp_range_s"],
+        heading_range_deg=values["wave_heading_range_deg"],
+        n_components=values["n_wave_components"],
+        spreading_s=values["wave_spreading_s"],
+        ramp_time=values["wave_ramp_time_s"],
+    )
+
+
+class S175Task(ShipTask, abc.ABC):
+    """A :class:`ShipTask` of the S175 (:func:`s175_setup`) from the shared environment
+    keyword arguments (:data:`SHIP_ARGUMENTS` for their meaning and units).
+
+    Parameters
+    ----------
+    num_envs : int
+        Number of episodes N.
+    rudder : {"command", "autopilot"}
+        Rudder following ``"rudder_command"`` or the PID heading autopilot.
+    sea : SeaSampler
+        Per-episode sea.
+    froude_number, physics_dt_s, integrator, hull_mesh, kg_m, precision
+        :func:`s175_setup` arguments (Fn [-], dt [s], scheme, mesh, KG [m], wave sums).
+    num_threads : int
+        numba threads over the ships in the compiled loop (1: serial).
+    control_dt_s : float
+        Control step [s], an integer multiple of ``physics_dt_s``.
+    speed_range_mps : tuple of float or None
+        Initial speed range [m/s] (None: the reference speed).
+    gm_range_m : tuple of float or None
+        GM range [m] of the episodes' loading (None: nominal).
+    capsize_angle_deg, dangerous_roll_deg, capsize_penalty, sensor_noise, wave_preview_m
+        :class:`ShipTask` arguments.
+    setup_changes : mapping, optional
+        :class:`ship_gym.engine.ship.ShipSetup` fields replaced after :func:`s175_setup`
+        (e.g. ``{"fins": "command"}``).
+    extra_observations : sequence of (name, low, high)
+        The subclass's observation entries.
+    """
+
+    def __init__(
+        self,
+        num_envs: int,
+        *,
+        rudder: Literal["command", "autopilot"],
+        sea: SeaSampler,
+        froude_number: float,
+        physics_dt_s: float,
+        control_dt_s: float,
+        integrator: IntegratorName,
+        hull_mesh: Sequence[int],
+        capsize_angle_deg: float | None,
+        dangerous_roll_deg: float,
+        precision: Precision = "float32",
+        num_threads: int = 1,
+        capsize_penalty: float,
+        sensor_noise: float,
+        wave_preview_m: Sequence[float],
+        kg_m: float | None = None,
+        speed_range_mps: tuple[float, float] | None = None,
+        gm_range_m: tuple[float, float] | None = None,
+        setup_changes: Mapping[str, Any] | None = None,
+        extra_observations: Sequence[tuple[str, float, float]] = (),
+    ) -> None:
+        setup = s175_setup(
+            froude_number=froude_number,
+            physics_dt=physics_dt_s,
+            integrator=integrator,
+            rudder=rudder,
+            hull_mesh=hull_mesh,
+            kg=kg_m,
+            precision=precision,
+        )
+        if not (
+            isinstance(num_threads, int) and not isinstance(num_threads, bool) and num_threads >= 1
+        ):
+            raise ValueError(f"num_threads must be an integer >= 1, got {num_threads!r}")
+        self.num_threads = num_threads
+        if setup_changes:
+            setup = dataclasses.replace(setup, **setup_changes)
+        super().__init__(
+            num_envs,
+            setup=setup,
+            sea=sea,
+            control_dt=control_dt_s,
+            speed_range=speed_range_mps,
+            gm_range=gm_range_m,
+            capsize_angle_deg=capsize_angle_deg,
+            dangerous_roll_deg=dangerous_roll_deg,
+            sensor_noise=sensor_noise,
+            wave_preview_m=wave_preview_m,
+            extra_observations=extra_observations,
+            capsize_penalty=capsize_penalty,
+        )
+        self.sim.parallel = num_threads > 1
+
+    # ------------------------------------------------------------------ shared reward terms
+    def roll_term(self, stats: StepStatistics, weight: float, scale: float) -> NDArray:
+        """−weight · mean(φ²)/scale² over the physics steps of the control step (scale [rad])."""
+        return -weight * stats.mean_square_roll / scale**2
+
+    def heading_term(self, weight: float, scale: float) -> NDArray:
+        """−weight · (e/scale)², e the wrapped heading error (scale [rad])."""
+        return -weight * (self._current_heading_error() / scale) ** 2
