@@ -31,7 +31,7 @@ rudder, surge/sway/yaw held (surge at U = Fn √(g Lpp)), heave/roll/pitch free 
 
 Combinations: one factor at a time from the current default (the 2400-face library mesh, the
 environments' S175_MESH when the study was set up, "fast", Holloway, Δt = 0.05 s), from a
-candidate fast default (the 1500-face mesh of ``scripts/bench_simulator.py`` ``MESH_1500``,
+candidate fast default (the 1500-face mesh of ``benchmarks/bench_simulator.py`` ``MESH_1500``,
 "fast32", Holloway, Δt = 0.1 s; meshes 2400, 3840 = (60, 24, 6, 4), 5400 = (90, 18, 9, 6) and
 9600 in its place) and from the recommended setting (5400 faces, "fast32", Holloway, 0.1 s),
 plus the meshes at the reference numerics (mesh error alone) and the numerics on the reference
@@ -91,7 +91,7 @@ ROLL0_DEG = 10.0
 
 MESH_KEYS = ("n_sections", "n_below", "n_above", "n_deck")
 MESHES: dict[str, tuple[int, int, int, int]] = {
-    "1500": (50, 10, 4, 2),  # scripts/bench_simulator.py MESH_1500 (the fast-path benchmark)
+    "1500": (50, 10, 4, 2),  # benchmarks/bench_simulator.py MESH_1500 (the fast-path benchmark)
     "2400": (60, 12, 6, 4),  # the library's default, S175_MESH of the environments until v1
     "3840": (60, 24, 6, 4),  # the default with twice the panels below the waterline
     "5400": (90, 18, 9, 6),  # 1.5x the default in every direction

@@ -44,7 +44,7 @@ SI inside (m, s, kg, N, rad). Degrees only at user boundaries, in names ending w
 
 from __future__ import annotations
 
-from typing import Final
+from typing import Final, overload
 
 import numpy as np
 
@@ -99,6 +99,11 @@ def dof_index(name: str) -> int:
     raise ValueError(f"unknown degree of freedom {name!r}; expected one of {DOF_NAMES}")
 
 
+@overload
+def wrap_angle(angle: float) -> float: ...
+@overload
+def wrap_angle(angle: np.ndarray) -> np.ndarray: ...
 def wrap_angle(angle: np.ndarray | float) -> np.ndarray | float:
-    """Wrap an angle [rad] to the interval [−π, π)."""
+    """Wrap an angle [rad] to the interval [−π, π) (arrays elementwise; the scalar form for
+    numba kernels is :func:`ship_gym.numerics.angles.wrap_angle_scalar`)."""
     return (np.asarray(angle) + np.pi) % (2.0 * np.pi) - np.pi

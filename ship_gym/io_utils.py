@@ -12,7 +12,7 @@ from pathlib import Path
 
 
 def atomic_write(
-    path: str | Path, write: Callable[[Path], None], *, make_parents: bool = True
+    path: str | Path, write: Callable[[Path], object], *, make_parents: bool = True
 ) -> Path:
     """Write a file through ``write(tmp_path)`` then atomically move it to ``path``.
 

@@ -34,10 +34,10 @@ import math
 import pickle
 import time
 import tomllib
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any, Protocol, runtime_checkable
 
 import gymnasium
 import numpy as np
@@ -69,6 +69,7 @@ METRICS: tuple[str, ...] = (
 ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
 
 
+@runtime_checkable
 class Policy(Protocol):
     """Anything with SB3's ``predict`` signature (SB3 models, :mod:`ship_gym.agents.baselines`)."""
 
@@ -173,7 +174,7 @@ def _vertical_acceleration_index(names: Sequence[str]) -> int:
 
 def run_episodes(
     env_id: str,
-    policy: Policy | Any,
+    policy: Policy | Callable[[Any], Policy],
     seeds: Sequence[int],
     env_kwargs: Mapping[str, Any] | None = None,
     *,
@@ -206,6 +207,8 @@ def run_episodes(
     """
     from gymnasium.vector import AutoresetMode
 
+    from ship_gym.envs.base import TaskVectorEnv
+
     seeds = [int(s) for s in seeds]
     if not seeds:
         raise ValueError("seeds must hold at least one seed")
@@ -222,21 +225,24 @@ def run_episodes(
         **kwargs,
     )
     try:
-        if not hasattr(policy, "predict"):
+        if not isinstance(policy, Policy):  # a factory (Policy checks for ``predict``)
             policy = policy(env)
         if hasattr(policy, "reset"):
             policy.reset()
-        names = tuple(env.unwrapped.observation_names)
+        task_env = env.unwrapped
+        if not isinstance(task_env, TaskVectorEnv):
+            raise ValueError(f"{env_id!r} is not a ship_gym environment (no TaskVectorEnv)")
+        names = tuple(task_env.observation_names)
         i_roll, f_roll = _obs_index(names, "roll")
         i_head, f_head = _obs_index(names, "heading error")
         roll = _SquaredSum(n, "roll_deg", i_roll, f_roll)
         vertical = _SquaredSum(
             n, "vertical_acceleration_mps2", _vertical_acceleration_index(names), 1.0
         )
-        limit = env.unwrapped.max_episode_steps
-        n_act = int(np.prod(env.single_action_space.shape))
+        limit = task_env.max_episode_steps
+        n_act = int(np.prod(task_env.single_action_space.shape))
 
-        obs, _ = env.reset(seed=seeds)
+        obs, _ = env.reset(seed=seeds)  # type: ignore[arg-type]  # gymnasium types it int | None; TaskVectorEnv takes one per episode
         active = np.ones(n, dtype=bool)
         returns = np.zeros(n)
         lengths = np.zeros(n, dtype=np.int64)
@@ -444,7 +450,7 @@ def evaluate_policies(
             label=label,
         )
         out["wall_time_s"][label] = time.perf_counter() - t0
-        metrics = summarize(stats)
+        metrics: dict[str, Any] = summarize(stats)
         metrics["per_episode"] = {
             k: np.asarray(v).tolist() for k, v in asdict(stats).items() if k != "seeds"
         }

@@ -274,7 +274,7 @@ def train(config: TrainConfig) -> Path:
         wall = time.perf_counter() - t0
         atomic_write(out / "model.zip", lambda p: model.save(p))
         if isinstance(venv, VecNormalize):
-            atomic_write(out / "vecnormalize.pkl", lambda p: venv.save(p))
+            atomic_write(out / "vecnormalize.pkl", lambda p: venv.save(str(p)))
         episodes = list(model.ep_info_buffer or [])
         summary = {
             "env_id": config.env_id,

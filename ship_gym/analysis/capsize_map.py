@@ -79,8 +79,8 @@ from ship_gym.typing import IntegratorName
 from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
 if TYPE_CHECKING:
-    from ship_gym.engine.batch import BatchSimulator
-    from ship_gym.engine.ship import ShipSetup
+    from ship_gym.engine.batch import BatchSimulator, EngineBackend
+    from ship_gym.engine.ship import RadiationName, ShipSetup
     from ship_gym.engine.simulator import Simulator
 
 __all__ = [
@@ -204,14 +204,8 @@ class SeaSpec:
             Regular-wave phase ε [rad] (ignored for an irregular sea).
         """
         if self.kind == "regular":
-            period = None if self.wavelength is not None else self.period
-            return RegularWave(
-                height=self.height,
-                period=period,
-                wavelength=self.wavelength,
-                phase=phase,
-                ramp_time=self.ramp_time,
-            )
+            return self._regular_wave(phase)
+        assert self.period is not None  # an irregular sea's Tp (checked in __post_init__)
         return IrregularSea(
             hs=self.height,
             tp=float(self.period),
@@ -220,12 +214,21 @@ class SeaSpec:
             ramp_time=self.ramp_time,
         )
 
+    def _regular_wave(self, phase: float = 0.0) -> RegularWave:
+        period = None if self.wavelength is not None else self.period
+        return RegularWave(
+            height=self.height,
+            period=period,
+            wavelength=self.wavelength,
+            phase=phase,
+            ramp_time=self.ramp_time,
+        )
+
     @property
     def label(self) -> str:
         """Short human-readable name, e.g. ``"regular H=10.5 m λ=262.5 m"``."""
         if self.kind == "regular":
-            sea = self.to_sea()
-            return f"regular H={self.height:g} m λ={sea.wavelength:.1f} m"
+            return f"regular H={self.height:g} m λ={self._regular_wave().wavelength:.1f} m"
         return f"JONSWAP Hs={self.height:g} m Tp={self.period:g} s"
 
     @classmethod
@@ -797,13 +800,14 @@ def _rudder_probe(sim: Simulator) -> Callable[[], float]:
 
 def _batch_rudder_probe(sim: BatchSimulator) -> Callable[[], np.ndarray]:
     """A callable returning the (N,) applied rudder angles [rad] (NaN without a rudder)."""
+    from ship_gym.control.actuators import ServoSpec
     from ship_gym.engine.batch_control import BatchActuatedSurfaces
 
     for f in sim.forces:
         if isinstance(f, BatchActuatedSurfaces) and f.key == "rudder" and f.servo is not None:
 
-            def angle(f: BatchActuatedSurfaces = f) -> np.ndarray:
-                return np.asarray(f.servo.applied(f.angle), dtype=float)  # type: ignore[union-attr]
+            def angle(f: BatchActuatedSurfaces = f, servo: ServoSpec = f.servo) -> np.ndarray:
+                return np.asarray(servo.applied(f.angle), dtype=float)
 
             return angle
     nan = np.full(sim.n_ships, math.nan)
@@ -815,8 +819,8 @@ def autopilot_setup(
     hull_overrides: dict,
     speed: float,
     *,
-    radiation: str,
-    integrator: str,
+    radiation: RadiationName,
+    integrator: IntegratorName,
     dt: float,
     database: str = "s175",
 ) -> ShipSetup:
@@ -843,8 +847,8 @@ def autopilot_setup(
         hull_overrides=dict(hull_overrides),
         database=database,
         speed=speed,
-        radiation=radiation,  # type: ignore[arg-type]
-        integrator=integrator,  # type: ignore[arg-type]
+        radiation=radiation,
+        integrator=integrator,
         dt=dt,
         propulsion=True,
         manoeuvring=True,
@@ -879,7 +883,7 @@ def cell_setup(config: CapsizeMapConfig, cell: Cell) -> tuple[ShipSetup, Any, fl
 
 
 def build_cells_simulator(
-    config: CapsizeMapConfig, cells: Sequence[Cell], *, backend: str = "auto"
+    config: CapsizeMapConfig, cells: Sequence[Cell], *, backend: EngineBackend = "auto"
 ) -> BatchSimulator:
     """One :class:`~ship_gym.engine.batch.BatchSimulator` whose ship i is ``cells[i]``.
 
@@ -921,7 +925,7 @@ def build_cells_simulator(
         fields,
         sea=sea,
         wave_heading=beta,
-        backend=backend,  # type: ignore[arg-type]
+        backend=backend,
     )
 
 
@@ -1257,6 +1261,8 @@ def run_capsize_map(
         from tqdm import tqdm
 
         bar = tqdm(total=len(pending), desc="capsize map", unit="cell")
+    # (function, its arguments): a batch of cells or one cell, each giving a list of records
+    tasks: list[tuple[Callable[..., list[dict]], tuple[Any, ...]]]
     if batched:
         tasks = [
             (_run_keyed_batch, (config, b, angle, engine)) for b in _batches(pending, int(n_jobs))

@@ -57,7 +57,7 @@ import csv
 import dataclasses
 import math
 import time
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal
@@ -70,7 +70,10 @@ from ship_gym.roll.equation import RollEquation, RollTrajectory
 from ship_gym.typing import FloatArray
 
 if TYPE_CHECKING:
+    import xarray as xr
     from matplotlib.axes import Axes
+
+    from ship_gym.waves.wave_field import WaveField
 
 __all__ = [
     "MCCUE_CAMPBELL_FITS",
@@ -278,7 +281,7 @@ def write_roll_csv(path: str | Path, record: RollRecord) -> Path:
 # database (per unit amplitude, capytaine's time convention x(t) = Re(X e^{−iωt}), crest at O at
 # t = 0; ship_gym.hydro.database). With eq. 2 divided by the roll inertia, K ≈ 1/(I44 + A44(ωₙ)).
 def roll_excitation_transfer(
-    database: object, omega: npt.ArrayLike, heading: npt.ArrayLike, *, dof: str = "Roll"
+    database: xr.Dataset, omega: npt.ArrayLike, heading: npt.ArrayLike, *, dof: str = "Roll"
 ) -> NDArray[np.complex128]:
     """Linear wave excitation X(ω, β) per unit amplitude of one DOF from a BEM database.
 
@@ -317,11 +320,11 @@ def roll_excitation_transfer(
     if not (np.all(np.isfinite(w)) and np.all(np.isfinite(b))):
         raise ValueError("omega [rad/s] and heading [rad] must be finite")
     i_dof = dof_index(dof)
-    arrays = as_arrays(database)  # type: ignore[arg-type]
+    arrays = as_arrays(database)
     beta = np.mod(b, 2.0 * math.pi)
     grid = np.mod(arrays.wave_direction, 2.0 * math.pi)
     if np.any(beta < grid.min() - 1e-9) or np.any(beta > grid.max() + 1e-9):
-        arrays = as_arrays(mirror_headings(database))  # type: ignore[arg-type]
+        arrays = as_arrays(mirror_headings(database))
         grid = np.mod(arrays.wave_direction, 2.0 * math.pi)
     order = np.argsort(grid)
     grid, exc = grid[order], arrays.excitation_force[:, order, i_dof]  # (n_ω, n_β)
@@ -365,8 +368,8 @@ def _wave_frequency_from_encounter(
 
 
 def roll_excitation_moment(
-    wave_field: object,
-    database: object,
+    wave_field: WaveField,
+    database: xr.Dataset,
     t: npt.ArrayLike,
     *,
     ship_heading: float = 0.0,
@@ -424,25 +427,25 @@ def roll_excitation_moment(
         if not math.isfinite(v):
             raise ValueError(f"{name} must be finite, got {v!r}")
     wf = wave_field
-    beta = np.asarray(wf.direction) - ship_heading  # type: ignore[attr-defined]
-    omega = np.asarray(wf.omega)  # type: ignore[attr-defined]
-    w_e = encounter_frequency(omega, forward_speed, beta, wf.g)  # type: ignore[attr-defined]
+    beta = np.asarray(wf.direction) - ship_heading
+    omega = np.asarray(wf.omega)
+    w_e = encounter_frequency(omega, forward_speed, beta, wf.g)
     x = roll_excitation_transfer(database, omega, beta, dof=dof)
     x0, y0 = position
-    eps = wf.phase - (wf.kx * x0 + wf.ky * y0)  # type: ignore[attr-defined]
-    coef = x * np.asarray(wf.amplitude) * np.exp(-1j * eps)  # type: ignore[attr-defined]
+    eps = wf.phase - (wf.kx * x0 + wf.ky * y0)
+    coef = x * np.asarray(wf.amplitude) * np.exp(-1j * eps)
     out = np.empty(tt.size)
     step = max(1, (1 << 20) // max(coef.size, 1))
     for i in range(0, tt.size, step):
         s = slice(i, i + step)
         out[s] = (np.exp(-1j * np.multiply.outer(tt[s], w_e)) @ coef).real
-    return out * wf.ramp(tt)  # type: ignore[attr-defined]
+    return out * wf.ramp(tt)
 
 
 def roll_excitation_from_elevation(
     elevation: npt.ArrayLike,
     dt: float,
-    database: object,
+    database: xr.Dataset,
     heading: float,
     *,
     forward_speed: float = 0.0,
@@ -503,7 +506,7 @@ def roll_excitation_from_elevation(
                          f"{forward_speed!r}")  # fmt: skip
     if g is None:
         g = float(getattr(database, "attrs", {}).get("g", GRAVITY))
-    omega_e = 2.0 * math.pi * np.fft.rfftfreq(z.size, dt)
+    omega_e = 2.0 * math.pi * np.fft.rfftfreq(z.size, dt).astype(np.float64, copy=False)
     omega = _wave_frequency_from_encounter(omega_e, forward_speed, heading, g)
     x = roll_excitation_transfer(database, omega, heading, dof=dof)
     return np.fft.irfft(np.conj(x) * np.fft.rfft(z), n=z.size)
@@ -550,7 +553,7 @@ class McCueCampbellModel:
 
     @classmethod
     def from_vector(
-        cls, values: Sequence[float], forcing_frequency: float = 0.0
+        cls, values: Iterable[float], forcing_frequency: float = 0.0
     ) -> McCueCampbellModel:
         """Model from a vector in :data:`PARAMETER_NAMES` order."""
         kw = {k: float(v) for k, v in zip(PARAMETER_NAMES, values, strict=True)}
@@ -624,6 +627,7 @@ class _InputTable:
         self, record: RollRecord, starts: NDArray[np.int64], n_steps: int, h: float, t0: float
     ) -> None:
         assert record.excitation is not None
+        self.excitation = record.excitation
         self.half_times = record.t[starts][None, :] + 0.5 * h * np.arange(2 * n_steps + 1)[:, None]
         self.t0 = t0
         self.two_over_h = 2.0 / h
@@ -634,7 +638,7 @@ class _InputTable:
     def set(self, gain: float, lag: float) -> None:
         if self.lag != lag:
             rec = self.record
-            self.unit = np.interp(self.half_times - lag, rec.t, rec.excitation)  # type: ignore[arg-type]
+            self.unit = np.interp(self.half_times - lag, rec.t, self.excitation)
             self.lag = lag
         self.table = gain * self.unit
 

@@ -48,9 +48,13 @@ import math
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ship_gym.engine.batch import BatchSimulator
+    from ship_gym.engine.simulator import Simulator
 
 __all__ = [
     "R_PR_NO_BILGE_KEELS",
@@ -497,6 +501,7 @@ def simulate_parametric_roll(
     )
     sea = RegularWave(height=check.height, wavelength=check.wavelength, ramp_time=50.0)
     beta = math.radians(check.heading_deg)
+    sim: Simulator | BatchSimulator
     if use_engine(engine, setup.radiation, setup.integrator):
         from ship_gym.engine.batch import build_batch_simulator
 

@@ -872,6 +872,11 @@ def speed_trial(
             leave=False,
         )
     resistance = prop.resistance
+    if resistance is None:
+        raise ValueError(
+            "the propeller has no resistance model (design_propeller_for attaches one); the "
+            "speed trial's predictions need it"
+        )
     points = []
     for n in shaft_speeds:
         n = float(n)
@@ -894,7 +899,7 @@ def speed_trial(
         bd = sim.force_breakdown()
         op = prop.operating_point(float(sim.nu[0]), n)
         rudder_drag = float(-bd["rudder"][0]) if "rudder" in bd else 0.0
-        res_name = resistance.name if resistance is not None else "resistance"
+        res_name = resistance.name
         other = sum(v[0] for k, v in bd.items() if k not in (prop.name, "rudder", res_name))
         # balance with the rudder's drag added, as a function of U (drag ∝ its own dynamic
         # pressure: scale the end-of-run value by (u/u_end)² — enough for a 2 % term)
@@ -1025,10 +1030,11 @@ def nomoto_of(sim: Simulator) -> tuple[float, float]:
     hull manoeuvring and rudder models at the current commands)."""
     from ship_gym.control.actuators import Actuated
     from ship_gym.engine.linearisation import nomoto_from_models
+    from ship_gym.forces.base import ForceModel
     from ship_gym.forces.manoeuvring import HullManoeuvring
     from ship_gym.forces.resistance import CalmWaterResistance
 
-    models = []
+    models: list[ForceModel] = []
     for f in sim.forces:
         if isinstance(f, CalmWaterResistance | Propeller | HullManoeuvring):
             models.append(f)

@@ -44,7 +44,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ship_gym.io_utils import atomic_write, atomic_write_text
 from ship_gym.roll.equation import RollEquation
-from ship_gym.typing import FloatArray
+from ship_gym.typing import FloatArray, IntegratorName
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -364,7 +364,7 @@ def s175_safe_basin(
     n_rate: int = 21,
     duration: float = 120.0,
     dt: float = 0.1,
-    integrator: str = "holloway",
+    integrator: IntegratorName = "holloway",
     capsize_angle: float | None = None,
     hull: str = "s175",
     progress: bool = False,
@@ -442,7 +442,7 @@ def s175_safe_basin(
         database=hull,
         free_dofs=(False, False, False, True, False, False),
         dt=dt,
-        integrator=integrator,  # type: ignore[arg-type]
+        integrator=integrator,
     )
     n = roll.size * rate.size
     sim = build_batch_simulator(setup, [field_] * n, sea=sea, wave_heading=heading)

@@ -85,6 +85,11 @@ def _cmd_kernels(args: argparse.Namespace) -> int:
 
     ds = load_database(args.database)
     arr = as_arrays(ds)
+    if arr.added_mass_infinite is None:
+        raise ValueError(
+            f"{args.database} has no infinite-frequency added mass A(∞) (omega = inf entry); "
+            "the kernels and their reconstruction need it"
+        )
     kernels = compute_kernels(
         arr.omega,
         arr.added_mass,

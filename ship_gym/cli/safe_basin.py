@@ -16,6 +16,7 @@ suffix writes NetCDF), ``--plot`` (PNG) — all written atomically.
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from ship_gym.cli.common import write_json
 
@@ -75,7 +76,7 @@ def _cmd_safe_basin(args: argparse.Namespace) -> int:
         n = 101 if args.grid is None else args.grid
         roll_max = 1.0 if args.roll_max is None else args.roll_max
         rate_max = 0.6 if args.rate_max is None else args.rate_max
-        kwargs = {
+        kwargs: dict[str, Any] = {
             "roll_range": (-roll_max, roll_max),
             "roll_rate_range": (-rate_max, rate_max),
             "n_roll": n,

@@ -59,7 +59,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         "--precision",
         default="float32",
         choices=["float32", "float64"],
-        help="wave sums of the Froude–Krylov kernel (float32: ≈ 2e-7 relative, ≈ 2× faster)",
+        help="wave sums of the Froude–Krylov kernel (float32: ≈ 2e-7 relative, faster)",
     )
     p.add_argument("--no-diffraction", action="store_true")
     p.add_argument("--no-viscous", action="store_true")
@@ -91,6 +91,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         free_dofs=free,
         fk_method="fast32" if args.precision == "float32" else "fast",
     )
+    sea: RegularWave | IrregularSea | None
     if args.regular is not None:
         sea = RegularWave(height=args.regular[0], wavelength=args.regular[1])
     elif args.irregular is not None:

@@ -260,7 +260,8 @@ class FrequencyWeighting:
         """Second-order sections (b₀, b₁, b₂), (a₀, a₁, a₂) of H = Σbₖsᵏ / Σaₖsᵏ (s in rad/s)."""
         w = [2.0 * math.pi * f for f in (self.f1, self.f2, self.f3, self.f4, self.f5, self.f6)]
         w1, w2, w3, w4, w5, w6 = w
-        out = [
+        gain = (w5 / w6) ** 2
+        out: list[tuple[tuple[float, float, float], tuple[float, float, float]]] = [
             ((0.0, 0.0, 1.0), (w1 * w1, w1 / self.q1, 1.0)),  # H_h
             ((w2 * w2, 0.0, 0.0), (w2 * w2, w2 / self.q2, 1.0)),  # H_l
             # H_t = (1 + s/ω₃) / (1 + s/(Q₄ω₄) + s²/ω₄²)
@@ -270,11 +271,11 @@ class FrequencyWeighting:
             ),
             # H_s = (1 + s/(Q₅ω₅) + s²/ω₅²)(ω₅/ω₆)² / (1 + s/(Q₆ω₆) + s²/ω₆²)
             (
-                tuple(c * (w5 / w6) ** 2 for c in (1.0, 1.0 / (self.q5 * w5), 1.0 / w5**2)),
+                (1.0 * gain, 1.0 / (self.q5 * w5) * gain, 1.0 / w5**2 * gain),
                 (1.0, 1.0 / (self.q6 * w6), 1.0 / w6**2),
             ),
         ]
-        return out  # type: ignore[return-value]
+        return out
 
     def response(self, frequency_hz: ArrayLike) -> NDArray:
         """Complex W(i 2π f) at frequencies f [Hz] (analytic, eq. 3)."""

@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Protocol
+from typing import ClassVar, Protocol, cast
 
 import numba as nb
 import numpy as np
@@ -207,7 +207,7 @@ class Controller(Protocol):
     :func:`control_law`, ``gains()`` its four parameters.
     """
 
-    kind: int
+    kind: ClassVar[int]
 
     def gains(self) -> FloatArray:
         """The law's parameters (4,)."""
@@ -221,15 +221,27 @@ def law_parameters(controller: Controller | None) -> tuple[int, FloatArray]:
     return int(controller.kind), np.asarray(controller.gains(), dtype=float)
 
 
+# (kind, gains, max_angle, max_rate, lag, delta, integral, t_step, eta_step, nu_step)
+ActuatorKernelArguments = tuple[
+    int, FloatArray, float, float, float, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray
+]
+
+
 def actuator_kernel_arguments(
     kind: int, gains: FloatArray, servo: ServoSpec, states: ActuatorStates
-) -> tuple:
+) -> ActuatorKernelArguments:
     """The arguments of :func:`actuator_angle_rows` / :func:`actuator_commit_rows` after the
     rows' inputs: law, gains, servo limits and lag, and the per-ship state arrays."""
     return (
         kind, gains, servo.max_angle, servo.max_rate, servo.lag, states.delta, states.integral,
         states.t_step, states.eta_step, states.nu_step,
     )  # fmt: skip
+
+
+class _HeadingController(Controller, Protocol):
+    """A controller of law 1 (:func:`heading_autopilot_law`): it reads ``commands[heading_key]``."""
+
+    heading_key: str
 
 
 class ActuatorStates:
@@ -324,13 +336,14 @@ class Actuated(ForceModel):
         """The law's reference: ψ_ref (autopilot: the command, or the heading at reset), or
         the open-loop commanded angle [rad]."""
         if self.kind == 1:
-            key = self.controller.heading_key  # type: ignore[union-attr]
+            # law 1 is the heading autopilot's, which names its set-point command
+            key = cast(_HeadingController, self.controller).heading_key
             return float(commands.get(key, self.states.initial_heading[0]))
         if self.kind == NO_CONTROLLER:
             return float(commands.get(self.command_key, 0.0))
         return 0.0
 
-    def _kernel_args(self) -> tuple:
+    def _kernel_args(self) -> ActuatorKernelArguments:
         return actuator_kernel_arguments(self.kind, self.gains, self.servo, self.states)
 
     def reset(self, t0: float, ctx: ForceContext) -> None:

@@ -20,13 +20,13 @@ integral is driven back at rate (δ_applied − δ_c)/(K_i T_t) so it does not w
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import ClassVar
 
 import numba as nb
 import numpy as np
 
+from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.typing import FloatArray
 
 
@@ -170,7 +170,7 @@ def heading_autopilot_law(gains, eta, nu, integral, reference, limit):  # pragma
         δ_c [rad] before saturation and d/dt ∫e [rad].
     """
     kp, kd, ki, tracking = gains[0], gains[1], gains[2], gains[3]
-    e = (reference - eta[5] + math.pi) % (2.0 * math.pi) - math.pi
+    e = wrap_angle_scalar(reference - eta[5])
     command = kp * e - kd * nu[5] + ki * integral
     if ki == 0.0:
         return command, 0.0

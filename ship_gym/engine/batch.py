@@ -101,6 +101,7 @@ from ship_gym.forces.viscous import ViscousRollDamping
 from ship_gym.hull import equilibrium, load_hull
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
+from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.typing import IntegratorName
 from ship_gym.waves.wave_field import WaveField, stack_fields
 
@@ -138,8 +139,8 @@ class _Seas:
     """Mutable (N, n_comp) component arrays of the ships' seas, zero-padded."""
 
     def __init__(self, fields: Sequence[WaveField | None], n_comp: int | None) -> None:
-        fields = [WaveField.calm() if f is None else f for f in fields]
-        stack = stack_fields(fields)
+        seas = [WaveField.calm() if f is None else f for f in fields]
+        stack = stack_fields(seas)
         n = max(1, stack.n_components, int(n_comp or 0))
         n_ships = stack.n_fields
         self.n_ships = n_ships
@@ -160,7 +161,7 @@ class _Seas:
         self.cos_direction = np.cos(self.direction)
         self.sin_direction = np.sin(self.direction)
         self.ramp_time = np.array(stack.ramp_time, dtype=float)
-        self.n_components = np.array([f.n_components for f in fields], dtype=np.int64)
+        self.n_components = np.array([f.n_components for f in seas], dtype=np.int64)
 
     def replace(self, ship: int, wave_field: WaveField | None) -> None:
         f = WaveField.calm() if wave_field is None else wave_field
@@ -311,8 +312,8 @@ class BatchStateSpaceRadiation(BatchForceModel):
     ``method="state_space"``). A is block-diagonal with 1×1 and 2×2 blocks and B has one
     non-zero per state (modal realisation), so the products are done on the non-zeros (CSR)
     in a numba loop: O(N · n_states), and no BLAS call (a multi-threaded BLAS on a loaded
-    2-core machine made a dense (64 × 129) @ (129 × 129) product take ≈ 20 ms instead of
-    0.07 ms).
+    2-core machine made a dense (64 × 129) @ (129 × 129) product take many times longer than on
+    an idle one; docs/benchmarks.md).
     """
 
     name = "radiation"
@@ -389,7 +390,7 @@ def _stale_headings(ships, psi, psi_ref, u_ref, speed, tol, out):  # pragma: no 
         if np.isnan(ref) or u_ref[s] != speed:
             out[r] = True
         else:
-            out[r] = abs((psi[r] - ref + math.pi) % _TWO_PI - math.pi) > tol
+            out[r] = abs(wrap_angle_scalar(psi[r] - ref)) > tol
 
 
 @nb.njit(cache=True)
@@ -516,7 +517,10 @@ class PerShipForceModel(BatchForceModel):
             if m.name != first.name or int(m.n_states) != int(first.n_states):
                 raise ValueError("all per-ship models must have the same name and n_states")
             a, b = m.added_mass, first.added_mass
-            if (a is None) != (b is None) or (a is not None and not np.array_equal(a, b)):
+            same = (a is None and b is None) or (
+                a is not None and b is not None and np.array_equal(a, b)
+            )
+            if not same:
                 raise ValueError("all per-ship models must declare the same added_mass")
         self.name = first.name
         self.n_states = int(first.n_states)
@@ -567,7 +571,9 @@ class PerShipForceModel(BatchForceModel):
             self.models[int(s)].commit(self._ship_context(ctx, i), states[i])
 
 
-def batch_force_models(models: Sequence[ForceModel]) -> list[BatchForceModel]:
+def batch_force_models(
+    models: Sequence[ForceModel | BatchForceModel],
+) -> list[BatchForceModel]:
     """Batch versions of one ship's force models (as built by ``build_force_models``).
 
     Froude–Krylov, state-space radiation memory, constant-coefficient radiation, diffraction and
@@ -1171,8 +1177,8 @@ class BatchSimulator:
             self.divergence_messages.pop(int(s), None)
         all_ships = n == self.n_ships and bool(np.all(ships == self._all))
         ctx, _, _ = self._context(ships, all_ships, new_t, new_eta, new_nu)
-        for f in self.forces:
-            f.reset(ships, ctx)
+        for model in self.forces:
+            model.reset(ships, ctx)
 
     # ------------------------------------------------------------------ per-ship loading
     def set_centre_of_gravity(self, indices: ArrayLike | None, cog: ArrayLike) -> None:
@@ -1400,13 +1406,13 @@ class BatchSimulator:
         ok = np.empty(q_new.shape[0], dtype=np.bool_)
         _healthy_rows(q_new, v_new, z_new, self.max_abs_velocity, ok)
         if not ok.all():
-            for r in np.flatnonzero(~ok):
-                s = int(ships[r])
+            for row in np.flatnonzero(~ok):
+                s = int(ships[row])
                 newly[s] = True
                 self.divergence_messages[s] = (
-                    f"ship {s} diverged at t = {t[r] + self.dt:.3f} s (step "
-                    f"{self.n_steps[s] + 1}): eta = {np.round(q_new[r], 4).tolist()}, "
-                    f"nu = {np.round(v_new[r], 4).tolist()}; try a smaller dt (now {self.dt} s) "
+                    f"ship {s} diverged at t = {t[row] + self.dt:.3f} s (step "
+                    f"{self.n_steps[s] + 1}): eta = {np.round(q_new[row], 4).tolist()}, "
+                    f"nu = {np.round(v_new[row], 4).tolist()}; try a smaller dt (now {self.dt} s) "
                     f"or another integrator (now {self.integrator_name!r})"
                 )
             self.diverged |= newly
@@ -1507,7 +1513,7 @@ class BatchSimulator:
                 left -= k
                 if self.diverged[s]:
                     exc = SimulationDiverged(self.divergence_messages[s])
-                    exc.result = result()  # type: ignore[attr-defined]
+                    exc.result = result()
                     raise exc
                 keep()
                 if bar is not None:
@@ -1647,7 +1653,7 @@ def build_batch_simulator(
         fields,
         forward_speed=setup.speed,
         dt=setup.dt,
-        integrator=setup.integrator,  # type: ignore[arg-type]
+        integrator=setup.integrator,
         free_dofs=setup.free_dofs,
         initial_eta=np.array([0.0, 0.0, eq.heave, 0.0, eq.trim, 0.0]),
         max_components=max_components,

@@ -18,7 +18,7 @@ The single-ship propeller and manoeuvring models evaluate through the same kerne
 groups' single-ship ``evaluate`` is still numpy per surface (same arithmetic), so a batch agrees
 with the same ships under :class:`~ship_gym.engine.batch.PerShipForceModel` or in single-ship
 :class:`~ship_gym.engine.simulator.Simulator` runs to rounding (tested,
-``tests/physics/test_batch_control.py``). The equations and their sources are in the modules of
+``tests/engine/test_batch_control.py``). The equations and their sources are in the modules of
 the single-ship models; this module adds none.
 
 ==========================================  ==================================================
@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from typing import Any
+from typing import Any, cast, overload
 
 import numba as nb
 import numpy as np
@@ -52,6 +52,7 @@ from scipy.optimize import brentq
 from ship_gym.control.actuators import (
     NO_CONTROLLER,
     Actuated,
+    ActuatorKernelArguments,
     ActuatorStates,
     ServoSpec,
     actuator_angle_rows,
@@ -63,8 +64,17 @@ from ship_gym.conventions import SURGE
 from ship_gym.forces.base import BatchContext, BatchForceModel, ForceModel
 from ship_gym.forces.fins import RollFins, SternFlaps, TFoil
 from ship_gym.forces.lifting_surface import SurfaceGroup, surface_group_force
-from ship_gym.forces.manoeuvring import HullManoeuvring, manoeuvring_force
-from ship_gym.forces.propeller import SHAFT_SPEED_COMMAND, Propeller, propeller_force
+from ship_gym.forces.manoeuvring import (
+    HullManoeuvring,
+    ManoeuvringKernelParameters,
+    manoeuvring_force,
+)
+from ship_gym.forces.propeller import (
+    SHAFT_SPEED_COMMAND,
+    Propeller,
+    PropellerKernelParameters,
+    propeller_force,
+)
 from ship_gym.forces.resistance import CalmWaterResistance
 from ship_gym.forces.rudder import Rudder
 
@@ -98,6 +108,12 @@ _SURFACE_KERNEL_FIELDS = (
     "normal_force_coefficient",
 )
 
+# the stacked kernel fields of a surface group, in _SURFACE_KERNEL_FIELDS order
+SurfaceGeometry = tuple[
+    NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray,
+    NDArray, NDArray, NDArray,
+]  # fmt: skip
+
 
 def _no_states(n: int) -> NDArray:
     return np.zeros((n, 0))
@@ -119,6 +135,10 @@ def _rows(ctx: BatchContext, value: Any, key: str) -> NDArray:
     return out
 
 
+@overload
+def _command_rows(ctx: BatchContext, key: str, default: float) -> NDArray: ...
+@overload
+def _command_rows(ctx: BatchContext, key: str, default: float | None) -> NDArray | None: ...
 def _command_rows(ctx: BatchContext, key: str, default: float | None) -> NDArray | None:
     """Rows of ``ctx.commands[key]``; ``default`` (or None) when the key is absent."""
     value = ctx.commands.get(key, None)
@@ -134,8 +154,8 @@ class BatchResistance(BatchForceModel):
     """Calm-water resistance X = −R_T(|u|) sign(u) for all ships (:class:`CalmWaterResistance`).
 
     R_T is the single-ship model's curve (a Holtrop–Mennen method or any callable), evaluated
-    once per ship with a moving surge velocity (a Python call of ≈ 1.4 µs for Holtrop–Mennen:
-    exact, and small beside the Froude–Krylov kernel at any N).
+    once per ship with a moving surge velocity (one Python call per ship: exact, and small beside
+    the Froude–Krylov kernel at any N; measured: docs/benchmarks.md).
     """
 
     def __init__(
@@ -176,7 +196,9 @@ class BatchResistance(BatchForceModel):
 
 
 @nb.njit(cache=True, nogil=True)
-def _propeller_rows(u, shaft, params, force, thrust_out):  # pragma: no cover - compiled
+def _propeller_rows(
+    u, shaft, params: PropellerKernelParameters, force, thrust_out
+):  # pragma: no cover - compiled
     """:func:`propeller_force` per row (params: the tuple of :attr:`BatchPropeller.params`)."""
     for i in range(u.shape[0]):
         thrust_out[i] = propeller_force(u[i], shaft[i], *params, force[i])
@@ -218,7 +240,9 @@ class BatchPropeller(BatchForceModel):
 
 
 @nb.njit(cache=True, nogil=True)
-def _manoeuvring_rows(nu, params, force):  # pragma: no cover - compiled
+def _manoeuvring_rows(
+    nu, params: ManoeuvringKernelParameters, force
+):  # pragma: no cover - compiled
     """:func:`manoeuvring_force` per row."""
     for i in range(nu.shape[0]):
         manoeuvring_force(nu[i], *params, force[i])
@@ -318,7 +342,7 @@ class BatchActuatedSurfaces(BatchForceModel):
             self.wake_fraction = group.wake_fraction
             self.straightening = (group.drift_straightening, group.yaw_straightening)
             self.propeller_geometry = (group.propeller_diameter, group.propeller_distance)
-            self.rudder = group
+            self.rudder: Rudder | None = group
             self.surface_limit = math.inf
         elif isinstance(group, RollFins | TFoil | SternFlaps):
             self.inflow = _INFLOW_RIGID
@@ -338,9 +362,12 @@ class BatchActuatedSurfaces(BatchForceModel):
         self.command_key = command_key or f"{key}_command"
         self.controller = controller
         self.kind, self.gains = law_parameters(controller)
-        self.geometry = tuple(
-            np.array([getattr(sf, name) for sf in group.surfaces], dtype=float)
-            for name in _SURFACE_KERNEL_FIELDS
+        self.geometry = cast(
+            SurfaceGeometry,  # one array per name of _SURFACE_KERNEL_FIELDS
+            tuple(
+                np.array([getattr(sf, name) for sf in group.surfaces], dtype=float)
+                for name in _SURFACE_KERNEL_FIELDS
+            ),
         )
         self.states = ActuatorStates(1)
 
@@ -348,15 +375,19 @@ class BatchActuatedSurfaces(BatchForceModel):
     def from_model(cls, model: Actuated | SurfaceGroup) -> BatchActuatedSurfaces:
         """The batch version of an ``Actuated`` surface group (or of a bare surface group)."""
         if isinstance(model, Actuated):
+            if not isinstance(model.model, SurfaceGroup):
+                raise NotImplementedError(
+                    f"no batch version of surface group {type(model.model).__name__}"
+                )
             return cls(
-                model.model,  # type: ignore[arg-type]
+                model.model,
                 model.servo,
                 model.key,
                 model.command_key,
                 model.controller,
             )
         if isinstance(model, SurfaceGroup):
-            key = {Rudder: "rudder"}.get(type(model)) or getattr(model, "command_key", "")
+            key = "rudder" if type(model) is Rudder else getattr(model, "command_key", "")
             return cls(model, None, key)
         raise NotImplementedError(f"no batch version of {type(model).__name__}")
 
@@ -378,10 +409,10 @@ class BatchActuatedSurfaces(BatchForceModel):
             ref = _command_rows(ctx, self.controller.heading_key, None)
             return ctx.rows(self.states.initial_heading) if ref is None else ref
         if self.kind == NO_CONTROLLER:
-            return _command_rows(ctx, self.command_key, 0.0)  # type: ignore[return-value]
+            return _command_rows(ctx, self.command_key, 0.0)
         return np.zeros(ctx.n)
 
-    def _kernel_args(self) -> tuple:
+    def _kernel_args(self) -> ActuatorKernelArguments:
         assert self.servo is not None
         return actuator_kernel_arguments(self.kind, self.gains, self.servo, self.states)
 
@@ -416,7 +447,7 @@ class BatchActuatedSurfaces(BatchForceModel):
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
         if self.servo is None:
             angle = _command_rows(ctx, self.key, 0.0)
-            return self.surface_force(ctx, angle), _no_states(ctx.n)  # type: ignore[arg-type]
+            return self.surface_force(ctx, angle), _no_states(ctx.n)
         angle = np.empty(ctx.n)
         actuator_angle_rows(
             ctx.ships, np.ascontiguousarray(ctx.t, dtype=float), self.reference(ctx),
@@ -494,7 +525,10 @@ def trim_batch_shaft_speed(
         for _ in range(iterations):
             batch.commands = {**batch.commands, SHAFT_SPEED_COMMAND: n.copy()}
             breakdown: Mapping[str, NDArray] = batch.force_breakdown()
-            others = sum(v[:, SURGE] for k, v in breakdown.items() if k != propeller.name)
+            others = sum(
+                (v[:, SURGE] for k, v in breakdown.items() if k != propeller.name),
+                start=np.zeros(batch.n_ships),
+            )
             for s in range(batch.n_ships):
 
                 def net(nn: float, other: float = float(others[s])) -> float:

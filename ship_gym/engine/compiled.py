@@ -63,6 +63,7 @@ from ship_gym.forces.manoeuvring import manoeuvring_force
 from ship_gym.forces.propeller import propeller_force
 from ship_gym.forces.radiation import state_space_radiation
 from ship_gym.forces.resistance import holtrop_total
+from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.numerics.fastmath import sincos_turns
 
 if TYPE_CHECKING:
@@ -156,7 +157,7 @@ class DiffractionRecord(NamedTuple):
     psi_ref: NDArray
     u_ref: NDArray
     work: NDArray
-    count: NDArray
+    refresh_count: NDArray
 
 
 class PropulsionRecord(NamedTuple):
@@ -317,12 +318,12 @@ def _evaluate(
         psi = q[5]
         ref = diff.psi_ref[s]
         stale = np.isnan(ref) or diff.u_ref[s] != rad.speed
-        stale = stale or abs((psi - ref + math.pi) % _TWO_PI - math.pi) > diff.tolerance
+        stale = stale or abs(wrap_angle_scalar(psi - ref)) > diff.tolerance
         if stale:
             dtab = (
                 diff.table, diff.beta_ext, diff.omega_db, diff.direction[s], diff.omega[s],
                 diff.wavenumber[s], diff.encounter, diff.step, False, diff.work[s],
-                diff.count[s : s + 1],
+                diff.refresh_count[s : s + 1],
             )  # fmt: skip
             ref2 = np.empty(2)
             refresh_diffraction_cache(psi, rad.speed, dtab, diff.xd[s], diff.dxd[s], ref2)
@@ -656,17 +657,18 @@ class CompiledBackend:
             shaft_col = self._column("shaft_speed", pro.default_shaft_speed)
         kt = (pro.params[:2]) if pro is not None else (np.zeros(4), np.zeros(4))
         scal = pro.params[2:] if pro is not None else (1.0,) * 10
-        self.propulsion = PropulsionRecord(
+        self.propulsion = PropulsionRecord._make((
             res is not None, _c(res.kernel_parameters() if res else np.zeros(1)),
             pro is not None, _c(kt[0]), _c(kt[1]), *(float(x) for x in scal), shaft_col,
             float(visc.b1) if visc else 0.0, float(visc.b2) if visc else 0.0,
-        )  # fmt: skip
+        ))  # fmt: skip
         man = next((f for f in sim.forces if isinstance(f, BatchHullManoeuvring)), None)
         if man is not None:
             p = man.params
             self.manoeuvring = ManoeuvringRecord(
-                True, *(float(x) for x in p[:4]), _c(p[4]), _c(p[5]), bool(p[6]), float(p[7])
-            )
+                True, float(p[0]), float(p[1]), float(p[2]), float(p[3]), _c(p[4]), _c(p[5]),
+                bool(p[6]), float(p[7]),
+            )  # fmt: skip
         else:
             self.manoeuvring = ManoeuvringRecord(
                 False, 0.0, 0.0, 0.0, 0.0, np.zeros(0), np.zeros(0), False, 0.0
@@ -758,6 +760,7 @@ class CompiledBackend:
         for k in ("eta_step", "nu_step"):
             states[k] = np.zeros((max(g_n, 1), n, 6))
         for i, g in enumerate(groups):
+            assert g.servo is not None  # bare surface groups are refused by _check
             scal["inflow"].append(g.inflow)
             scal["wake"].append(g.wake_fraction)
             scal["gamma_v"].append(g.straightening[0])
@@ -803,12 +806,12 @@ class CompiledBackend:
             if arrays[k].shape[0] == 0:
                 arrays[k] = np.zeros(1)
         gains = _c(scal["gains"]) if g_n else np.zeros((1, 4))
-        return SurfacesRecord(
+        return SurfacesRecord._make((
             g_n, ptr, *geo, arrays["inflow"], arrays["wake"], arrays["gamma_v"],
             arrays["gamma_r"], arrays["prop_d"], arrays["prop_x"], arrays["thrust_mode"],
             arrays["c_th"], arrays["surface_limit"], arrays["max_angle"], arrays["max_rate"],
             arrays["lag"], arrays["kind"], gains, arrays["ref_col"], *states.values(),
-        )  # fmt: skip
+        ))  # fmt: skip
 
     def handles_commands(self) -> bool:
         """Whether the compiled loop reads every command in force the way the numpy path does."""
@@ -886,9 +889,9 @@ class CompiledBackend:
     def _call(self, args: tuple) -> None:
         """Call the compiled loop; after the first call, its compiled entry point directly.
 
-        numba's dispatcher resolves the types of the ≈ 150 record fields at every call
-        (≈ 20 µs); the entry point of the specialisation it chose skips that. Should the
-        argument types ever change (another array layout), the dispatcher is used again.
+        numba's dispatcher resolves the types of the ≈ 150 record fields at every call (a cost
+        per call: docs/benchmarks.md); the entry point of the specialisation it chose skips that.
+        Should the argument types ever change (another array layout), the dispatcher is used again.
         """
         run = _advance_parallel if self.sim.parallel else _advance_serial
         entry = self._entry.get(run)
@@ -901,7 +904,7 @@ class CompiledBackend:
         run(*args)
         overload = run.overloads.get(tuple(nb.typeof(a) for a in args))
         if overload is not None:
-            self._entry[run] = overload.entry_point
+            self._entry[run] = overload.entry_point  # type: ignore[attr-defined]  # numba builds CompileResult's fields from a list
 
     def advance(
         self, ships: NDArray, n_steps: int, danger: float, cmd: NDArray | None = None
@@ -1143,7 +1146,7 @@ class CompiledShip:
 
         b = self.backend
         waves, rigid, diff = b._records()
-        w = [x[0] if np.ndim(x) else float(x[0]) for x in waves]
+        w: list[Any] = [x[0] if np.ndim(x) else float(x[0]) for x in waves]
         amp, omega_t, phase_t, ramp, kxt, kyt, k2, kxt32, kyt32, k232 = w
         n_c = amp.shape[0]
         mod, offset = np.empty(n_c), np.empty(n_c)

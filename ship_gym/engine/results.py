@@ -22,6 +22,9 @@ __all__ = ["SimulationDiverged", "SimulationResult", "steps_in"]
 class SimulationDiverged(RuntimeError):
     """The state became non-finite or absurd; the simulator keeps its last valid state."""
 
+    result: SimulationResult | None = None
+    """The series recorded up to the divergence, when raised by a recording run."""
+
 
 @dataclass
 class SimulationResult:

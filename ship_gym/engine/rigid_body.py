@@ -29,7 +29,8 @@ if TYPE_CHECKING:
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a × b for 3-vectors (np.cross's axis handling costs ~60 µs per call on small arrays)."""
+    """a × b for 3-vectors (np.cross's axis handling is slow on small arrays; measured:
+    docs/benchmarks.md)."""
     return np.array(
         [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
     )

@@ -27,11 +27,17 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Literal, overload
 
 import numpy as np
 
-from ship_gym.control.actuators import FIN_SERVO, FOIL_SERVO, RUDDER_SERVO, Actuated
+from ship_gym.control.actuators import (
+    FIN_SERVO,
+    FOIL_SERVO,
+    RUDDER_SERVO,
+    Actuated,
+    Controller,
+)
 from ship_gym.control.autopilot import HeadingAutopilot
 from ship_gym.control.stabilisers import FinController, RideController, control_derivative
 from ship_gym.engine.linearisation import nomoto_from_models
@@ -91,8 +97,8 @@ class ShipSetup:
     dt : float
         Physics time step [s].
     fk_method : {"fast", "fast32", "reference"}
-        Froude–Krylov kernel implementation (``"fast32"``: wave sums in float32, ≈ 2× faster,
-        forces within ≈ 1e-7 of the reference).
+        Froude–Krylov kernel implementation (``"fast32"``: wave sums in float32, faster
+        (docs/benchmarks.md), forces within ≈ 1e-7 of the reference).
     free_dofs : tuple of bool
         DOFs integrated (held DOFs keep their initial velocity).
     propulsion : bool
@@ -158,6 +164,14 @@ class ShipSetup:
 Sea = RegularWave | IrregularSea | None
 
 
+@overload
+def wave_field_for(
+    sea: RegularWave | IrregularSea, wave_heading: float, rng: np.random.Generator | None = None
+) -> WaveField: ...
+@overload
+def wave_field_for(
+    sea: Sea, wave_heading: float, rng: np.random.Generator | None = None
+) -> WaveField | None: ...
 def wave_field_for(
     sea: Sea, wave_heading: float, rng: np.random.Generator | None = None
 ) -> WaveField | None:
@@ -271,7 +285,7 @@ def _control_models(
     c = database["hydrostatic_stiffness"].values
     if setup.rudder != "none":
         rudder = Rudder()
-        controller = None
+        controller: Controller | None = None
         if setup.rudder == "autopilot":
             nomoto = nomoto_from_models(
                 hull, [*out, rudder], setup.speed, added_mass=a_lhs, commands=commands

@@ -59,6 +59,8 @@ def engine_model(model: ForceModel | BatchForceModel) -> BatchForceModel:
     any other :class:`~ship_gym.forces.base.ForceModel` runs as itself, once per step, through a
     :class:`~ship_gym.engine.batch.PerShipForceModel` (the engine's numpy path).
     """
+    if isinstance(model, BatchForceModel):
+        return model
     try:
         return batch_force_models([model])[0]
     except NotImplementedError:

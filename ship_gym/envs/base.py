@@ -211,15 +211,21 @@ class _Rendering:
         self._viewer: HumanViewer | None = None
 
     def frame(self, task: BatchedTask, i: int) -> NDArray[np.uint8] | None:
-        from ship_gym.envs.rendering import HumanViewer, render_rgb
+        from ship_gym.envs.rendering import HumanViewer
 
         if self.render_mode == "rgb_array":
-            return render_rgb(task.snapshot(i))
+            return self.rgb(task, i)
         if self.render_mode == "human":
             if self._viewer is None:
                 self._viewer = HumanViewer()
             self._viewer.show(task.snapshot(i))
         return None
+
+    def rgb(self, task: BatchedTask, i: int) -> NDArray[np.uint8]:
+        """The rgb_array frame of episode i."""
+        from ship_gym.envs.rendering import render_rgb
+
+        return render_rgb(task.snapshot(i))
 
     def close(self) -> None:
         if self._viewer is not None:
@@ -256,7 +262,11 @@ class TaskEnv(_TaskView, gymnasium.Env):
     """
 
     task_class: ClassVar[type[BatchedTask]]
-    metadata: ClassVar[dict[str, Any]] = {"render_modes": list(RENDER_MODES), "render_fps": 4}
+    # an instance attribute with a class default, as gymnasium.Env declares it (make() reads the
+    # class's render modes; __init__ sets the instance's render_fps)
+    metadata: dict[str, Any] = {"render_modes": list(RENDER_MODES), "render_fps": 4}  # noqa: RUF012
+    observation_space: spaces.Box
+    action_space: spaces.Box
 
     def __init__(self, render_mode: str | None = None, **kwargs: Any) -> None:
         self._rendering = _Rendering(render_mode)
@@ -340,7 +350,10 @@ class TaskVectorEnv(_TaskView, VectorEnv):
     """
 
     task_class: ClassVar[type[BatchedTask]]
-    metadata: ClassVar[dict[str, Any]] = {
+    single_observation_space: spaces.Box
+    single_action_space: spaces.Box
+    # as in TaskEnv: an instance attribute with a class default (gymnasium.vector.VectorEnv's)
+    metadata: dict[str, Any] = {  # noqa: RUF012
         "render_modes": list(RENDER_MODES),
         "render_fps": 4,
         "autoreset_mode": AutoresetMode.NEXT_STEP,
@@ -397,24 +410,31 @@ class TaskVectorEnv(_TaskView, VectorEnv):
     def _seed(self, seed: int | Sequence[int | None] | None, ids: NDArray[np.int64]) -> None:
         if seed is None:
             seeds: list[int | None] = [None] * len(ids)
-        elif isinstance(seed, int | np.integer) and not isinstance(seed, bool):
+        elif isinstance(seed, int | np.integer):
+            if isinstance(seed, bool):
+                raise ValueError(self._seed_error(seed))
             seeds = [int(seed) + int(i) for i in ids]
         else:
-            seeds = list(seed)  # type: ignore[arg-type]
+            seeds = list(seed)
             if len(seeds) != self.num_envs:
-                raise ValueError(
-                    f"seed must be an int, None or a sequence of {self.num_envs} seeds, "
-                    f"got {seed!r}"
-                )
+                raise ValueError(self._seed_error(seed))
             seeds = [seeds[int(i)] for i in ids]
         for i, s in zip(ids, seeds, strict=True):
             if s is not None or self._rngs[int(i)] is None:
                 self._rngs[int(i)], _ = seeding.np_random(s)
 
+    def _seed_error(self, seed: object) -> str:
+        return f"seed must be an int, None or a sequence of {self.num_envs} seeds, got {seed!r}"
+
+    def _rng(self, i: int) -> np.random.Generator:
+        rng = self._rngs[i]
+        assert rng is not None  # seeded by _seed at the first reset (all episodes)
+        return rng
+
     def _reset_ids(self, ids: NDArray[np.int64], options: Mapping[str, Any] | None) -> None:
         if ids.size == 0:
             return
-        self.task.reset_episodes(ids, [self._rngs[int(i)] for i in ids], options)  # type: ignore[misc]
+        self.task.reset_episodes(ids, [self._rng(int(i)) for i in ids], options)
         self._steps[ids] = 0
         self._pending_reset[ids] = False
 
@@ -514,7 +534,7 @@ class TaskVectorEnv(_TaskView, VectorEnv):
         if self.render_mode == "human":
             self._rendering.frame(self.task, 0)
             return None
-        return tuple(self._rendering.frame(self.task, i) for i in range(self.num_envs))  # type: ignore[misc]
+        return tuple(self._rendering.rgb(self.task, i) for i in range(self.num_envs))
 
     def close_extras(self, **kwargs: Any) -> None:
         self._rendering.close()

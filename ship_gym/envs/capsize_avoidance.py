@@ -27,6 +27,7 @@ from ship_gym.envs.s175 import S175_MESH, S175Task, ship_kwargs
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.ship_task import StepStatistics, write_heading_observations
 from ship_gym.envs.validation import check_positive, check_range, check_weight
+from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.typing import IntegratorName, Precision
 
 __all__ = [
@@ -64,7 +65,7 @@ def _apply_actions_kernel(
     target shaft speed ← (lo + (a₁ + 1)/2 · (hi − lo)) · nominal; shaft speed ← the target
     clipped to ± ``max_change`` of the current one (the NumPy expressions' operations)."""
     for i in range(actions.shape[0]):
-        dev = (setpoint[i] + actions[i, 0] * heading_rate - course + math.pi) % _TWO_PI - math.pi
+        dev = wrap_angle_scalar(setpoint[i] + actions[i, 0] * heading_rate - course)
         dev = clip_scalar_bound(dev, -max_deviation, max_deviation)
         setpoint[i] = course + dev
         heading_command[i] = setpoint[i]
@@ -116,7 +117,10 @@ class CapsizeAvoidanceTask(S175Task):
             "wavelength_ratio_range", wavelength_ratio_range, low=0.2, high=5.0, unit="λ/Lpp"
         )
         # deep water: T = √(2π λ / g) (the peak period of an irregular sea)
-        periods = tuple(math.sqrt(2.0 * math.pi * r * S175_LPP / GRAVITY) for r in ratio)
+        periods = (
+            math.sqrt(2.0 * math.pi * ratio[0] * S175_LPP / GRAVITY),
+            math.sqrt(2.0 * math.pi * ratio[1] * S175_LPP / GRAVITY),
+        )
         self.heading_rate = math.radians(
             check_positive("heading_rate_deg", heading_rate_deg, "deg", 45.0)
         )
@@ -146,14 +150,18 @@ class CapsizeAvoidanceTask(S175Task):
             n_components=n_wave_components,
             ramp_time=wave_ramp_time_s,
         )
-        speed_range = None
+        speed_range: tuple[float, float] | None = None
         if froude_range is not None:
-            speed_range = tuple(f * math.sqrt(GRAVITY * S175_LPP) for f in froude_range)
+            low, high = froude_range
+            speed_range = (
+                low * math.sqrt(GRAVITY * S175_LPP),
+                high * math.sqrt(GRAVITY * S175_LPP),
+            )
         super().__init__(
             num_envs,
             rudder="autopilot",
             sea=sea,
-            speed_range_mps=speed_range,  # type: ignore[arg-type]
+            speed_range_mps=speed_range,
             extra_observations=(
                 ("heading from voyage course [rad]", -math.pi, math.pi),
                 ("heading set-point from voyage course [rad]", -math.pi, math.pi),

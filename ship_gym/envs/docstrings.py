@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 from ship_gym.envs.registration import max_episode_steps
 
 if TYPE_CHECKING:
-    pass
+    from ship_gym.envs.base import BatchedTask, TaskEnv
 
 
 # =============================================================================================
@@ -79,13 +79,13 @@ def _format_default(value: Any) -> str:
     return repr(value)
 
 
-def _task_parameters(task_class: type) -> list[inspect.Parameter]:
+def _task_parameters(task_class: type[BatchedTask]) -> list[inspect.Parameter]:
     """The keyword arguments of ``task_class.__init__`` after ``num_envs``."""
     params = list(inspect.signature(task_class.__init__).parameters.values())
     return [p for p in params[1:] if p.name != "num_envs"]
 
 
-def arguments_table(task_class: type, rows: Mapping[str, tuple[str, str]]) -> str:
+def arguments_table(task_class: type[BatchedTask], rows: Mapping[str, tuple[str, str]]) -> str:
     """The ``## Arguments`` markdown table of a task: every keyword argument of its
     ``__init__`` in signature order, its default, and (unit, meaning) from ``rows`` or else
     :data:`SHIP_ARGUMENTS`.
@@ -105,10 +105,12 @@ def arguments_table(task_class: type, rows: Mapping[str, tuple[str, str]]) -> st
     return "\n".join(lines)
 
 
-def _time_limit(name: str, task_class: type) -> str:
+def _time_limit(name: str, task_class: type[BatchedTask]) -> str:
     steps = max_episode_steps(name)
     defaults = {p.name: p.default for p in _task_parameters(task_class)}
     dt = defaults.get("control_dt_s", defaults.get("control_dt"))
+    if dt is None:
+        raise ValueError(f"{task_class.__name__} has no control_dt default for {{time_limit}}")
     return f"``MAX_EPISODE_STEPS`` = {steps} control steps = {steps * dt:g} s at the default step"
 
 
@@ -121,7 +123,7 @@ def _fill(doc: str, marker: str, text: str) -> str:
     return doc.replace(f"{{{marker}}}", text.replace("\n", "\n" + indent), 1)
 
 
-_EnvType = TypeVar("_EnvType", bound=type)
+_EnvType = TypeVar("_EnvType", bound="type[TaskEnv]")
 
 
 def env_docstring(
@@ -145,7 +147,7 @@ def env_docstring(
     """
 
     def decorate(cls: _EnvType) -> _EnvType:
-        task_class = cls.task_class  # type: ignore[attr-defined]
+        task_class = cls.task_class
         name = cls.__name__.removesuffix("Env")
         doc = (cls.__doc__ or "").rstrip()
         if "{ship_observations}" in doc:

@@ -268,7 +268,7 @@ def _build(width: int, height: int, snapshot: RenderSnapshot) -> _Canvas:
     ax_side = fig.add_subplot(grid[0, 0])
     ax_sec = fig.add_subplot(grid[0, 1])
     ax_strip = fig.add_subplot(grid[1, :])
-    small = {"fontsize": 7}
+    small: dict[str, Any] = {"fontsize": 7}
     a: dict[str, Any] = {"side": ax_side, "section": ax_sec, "strip": ax_strip}
     for ax in (ax_side, ax_sec):
         ax.set_facecolor(_SKY_COLOUR)
@@ -395,7 +395,9 @@ def _update(c: _Canvas, snap: RenderSnapshot) -> tuple:
             )
     a["sec_limit_port"].set_visible(show_limit)
     a["sec_limit_stbd"].set_visible(show_limit)
-    limit_txt = f"   limit {math.degrees(snap.roll_limit):.0f}°" if show_limit else ""
+    limit_txt = (
+        f"   limit {math.degrees(snap.roll_limit):.0f}°" if snap.roll_limit is not None else ""
+    )
     a["sec_text"].set_text(f"roll {math.degrees(phi):+.1f}°{limit_txt}")
 
     # motion strip against time relative to now, window and scale rounded

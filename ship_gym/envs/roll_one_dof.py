@@ -58,19 +58,27 @@ def _finite_float(value: Any, name: str, unit: str) -> float:
     return v
 
 
+def _non_negative(value: Any, name: str) -> float:
+    v = _finite_float(value, name, "-")
+    if v < 0.0:
+        raise ValueError(f"{name} must be >= 0, got {value!r}")
+    return v
+
+
 def _range(
     value: float | Sequence[float], name: str, unit: str, *, non_negative: bool = False
 ) -> tuple[float, float]:
     """A (low, high) sampling range from a scalar (fixed) or a pair, validated."""
-    if isinstance(value, int | float | np.floating | np.integer) and not isinstance(value, bool):
+    expected = f"{name} must be a number or a (low, high) pair [{unit}], got {value!r}"
+    if isinstance(value, int | float | np.floating | np.integer):
+        if isinstance(value, bool):
+            raise ValueError(expected)
         low = high = _finite_float(value, name, unit)
     else:
         try:
-            low, high = (_finite_float(v, name, unit) for v in value)  # type: ignore[union-attr]
+            low, high = (_finite_float(v, name, unit) for v in value)
         except (TypeError, ValueError):
-            raise ValueError(
-                f"{name} must be a number or a (low, high) pair [{unit}], got {value!r}"
-            ) from None
+            raise ValueError(expected) from None
     if low > high:
         raise ValueError(f"{name} must have low <= high [{unit}], got {value!r}")
     if non_negative and low < 0.0:
@@ -161,20 +169,13 @@ class RollOneDOFTask(BatchedTask):
                 f"dangerous_roll_angle must be in (0, capsize_angle = {self.capsize_angle:.4f}] "
                 f"[rad], got {dangerous_roll_angle!r}"
             )
-        weights = {
-            "alive_weight": alive_weight,
-            "roll_weight": roll_weight,
-            "roll_rate_weight": roll_rate_weight,
-            "effort_weight": effort_weight,
-            "capsize_penalty": capsize_penalty,
-            "roll_noise_std": roll_noise_std,
-            "roll_rate_noise_std": roll_rate_noise_std,
-        }
-        for key, value in weights.items():
-            v = _finite_float(value, key, "-")
-            if v < 0.0:
-                raise ValueError(f"{key} must be >= 0, got {value!r}")
-            setattr(self, key, v)
+        self.alive_weight = _non_negative(alive_weight, "alive_weight")
+        self.roll_weight = _non_negative(roll_weight, "roll_weight")
+        self.roll_rate_weight = _non_negative(roll_rate_weight, "roll_rate_weight")
+        self.effort_weight = _non_negative(effort_weight, "effort_weight")
+        self.capsize_penalty = _non_negative(capsize_penalty, "capsize_penalty")
+        self.roll_noise_std = _non_negative(roll_noise_std, "roll_noise_std")
+        self.roll_rate_noise_std = _non_negative(roll_rate_noise_std, "roll_rate_noise_std")
         self.observe_forcing_phase = bool(observe_forcing_phase)
         wn = self.equation.natural_frequency
         #: roll-rate scale of the reward [rad/s]: ωₙ φ_c (the rate of a free roll of amplitude φ_c)

@@ -28,13 +28,13 @@ library hull's. Against a 9600-panel mesh (``docs/accuracy/results.md``): GZ wit
 period −0.28 %, RMS roll +2.8 % in a stern-quartering sea near roll resonance."""
 
 S175_MESH_FAST: tuple[int, int, int, int] = (50, 10, 4, 2)
-"""The fastest mesh the accuracy study admits: 1500 panels, ≈ 1.6× faster than
-:data:`S175_MESH`; GZ within 4.2 mm and roll period −0.43 %, but RMS roll +4.5 % near roll
+"""The fastest mesh the accuracy study admits: 1500 panels, faster than :data:`S175_MESH`
+(``docs/benchmarks.md``); GZ within 4.2 mm and roll period −0.43 %, but RMS roll +4.5 % near roll
 resonance (``docs/accuracy/results.md``)."""
 
 S175_MESH_FINE: tuple[int, int, int, int] = (90, 18, 9, 6)
-"""5400 panels: RMS motions within 0.3 % of a 9600-panel mesh at ≈ 1.5× the cost of
-:data:`S175_MESH` (``docs/accuracy/results.md``)."""
+"""5400 panels: RMS motions within 0.3 % of a 9600-panel mesh, at a higher cost than
+:data:`S175_MESH` (``docs/accuracy/results.md``; timings in ``docs/benchmarks.md``)."""
 
 RUDDER_LIMIT_DEG = 35.0
 """Rudder angle limit of the servo [deg] (:data:`ship_gym.control.actuators.RUDDER_SERVO`)."""
@@ -44,7 +44,7 @@ def s175_setup(
     *,
     froude_number: float,
     physics_dt: float,
-    integrator: str,
+    integrator: IntegratorName,
     rudder: Literal["command", "autopilot"],
     hull_mesh: Sequence[int],
     kg: float | None,
@@ -110,7 +110,7 @@ def s175_setup(
         radiation="state_space",
         diffraction=True,
         viscous_roll=True,
-        integrator=integrator,  # type: ignore[arg-type]
+        integrator=integrator,
         dt=float(physics_dt),
         propulsion=True,
         manoeuvring=True,

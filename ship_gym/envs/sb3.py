@@ -26,14 +26,14 @@ calls the method once and repeats the result, and :meth:`set_attr` only accepts 
 
 stable-baselines3 (and torch) are imported only when the adapter is used: ``SB3VecEnv`` is
 created on first access (module ``__getattr__``, PEP 562), so ``import ship_gym.envs.sb3`` stays
-light, as every ``ship_gym`` module must (``tests/unit/test_import_boundaries.py``).
+light, as every ``ship_gym`` module must (``tests/package/test_import_boundaries.py``).
 """
 
 from __future__ import annotations
 
 import functools
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import gymnasium
 import numpy as np
@@ -76,6 +76,32 @@ def vector_infos_to_list(infos: dict[str, Any], num_envs: int) -> list[dict[str,
     return out
 
 
+class _BatchedVectorEnv(Protocol):
+    """What :class:`SB3VecEnv` uses of a Gymnasium vector env: one seed per episode at reset
+    (as :class:`~ship_gym.envs.base.TaskVectorEnv` and Gymnasium's ``SyncVectorEnv`` take
+    them), batched steps and one rgb frame per episode."""
+
+    @property
+    def metadata(self) -> dict[str, Any]: ...
+    @property
+    def num_envs(self) -> int: ...
+    @property
+    def single_observation_space(self) -> gymnasium.Space[Any]: ...
+    @property
+    def single_action_space(self) -> gymnasium.Space[Any]: ...
+    def reset(
+        self,
+        *,
+        seed: int | Sequence[int | None] | None = None,
+        options: dict[str, Any] | None = None,
+    ) -> tuple[NDArray, dict[str, Any]]: ...
+    def step(
+        self, actions: NDArray
+    ) -> tuple[NDArray, NDArray, NDArray, NDArray, dict[str, Any]]: ...
+    def render(self) -> tuple[NDArray, ...] | None: ...
+    def close(self) -> None: ...
+
+
 @functools.cache
 def _sb3_vec_env_class() -> type:
     """Define :class:`SB3VecEnv` (imports stable-baselines3; done once, on first use)."""
@@ -97,7 +123,7 @@ def _sb3_vec_env_class() -> type:
         ended by the time limit and not by termination), as SB3's ``DummyVecEnv`` does.
         """
 
-        def __init__(self, env: gymnasium.vector.VectorEnv) -> None:
+        def __init__(self, env: _BatchedVectorEnv) -> None:
             mode = env.metadata.get("autoreset_mode", AutoresetMode.NEXT_STEP)
             if AutoresetMode(mode) != AutoresetMode.SAME_STEP:
                 raise ValueError(

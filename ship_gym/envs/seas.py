@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
@@ -104,7 +104,7 @@ class SeaSampler:
         beta = math.radians(heading_deg)
         if self.kind == "regular":
             phase = float(rng.uniform(0.0, _TWO_PI))
-            sea: Any = RegularWave(
+            sea: RegularWave | IrregularSea = RegularWave(
                 height=height, period=period, phase=phase, ramp_time=self.ramp_time
             )
         else:

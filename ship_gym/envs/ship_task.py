@@ -63,12 +63,14 @@ import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
+from ship_gym.conventions import wrap_angle
 from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import BatchedTask, TaskStep
 from ship_gym.envs.loading import loading_condition
 from ship_gym.envs.prototypes import designed_propeller, prototype_simulator
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.validation import check_range, check_weight
+from ship_gym.numerics.angles import wrap_angle_scalar
 
 if TYPE_CHECKING:
     from ship_gym.engine.batch import BatchSimulator
@@ -184,7 +186,7 @@ def _step_kernel(
         danger_fraction[i] = f
         cost[i] = f
         episode_steps[i] += 1
-        heading_error[i] = (heading_setpoint[i] - eta[i, 5] + math.pi) % _TWO_PI - math.pi
+        heading_error[i] = wrap_angle_scalar(heading_setpoint[i] - eta[i, 5])
         roll_deg[i] = eta[i, 3] * _RAD2DEG
         max_roll_deg[i] = max_abs[i] * _RAD2DEG
 
@@ -243,8 +245,8 @@ def _heading_observations_kernel(psi, setpoint, course, third, out):  # pragma: 
     """out[:, 0] = wrap(ψ − course), out[:, 1] = wrap(ψ_ref − course) (wrap(x) = (x + π) mod 2π
     − π, NumPy's remainder), out[:, 2] = third."""
     for i in range(psi.shape[0]):
-        out[i, 0] = (psi[i] - course + math.pi) % _TWO_PI - math.pi
-        out[i, 1] = (setpoint[i] - course + math.pi) % _TWO_PI - math.pi
+        out[i, 0] = wrap_angle_scalar(psi[i] - course)
+        out[i, 1] = wrap_angle_scalar(setpoint[i] - course)
         out[i, 2] = third[i]
 
 
@@ -639,7 +641,7 @@ class ShipTask(BatchedTask, abc.ABC):
         position_before = sim.eta[:, :2].copy()
         # the control step's physics substeps in one engine call (compiled when possible)
         if self.num_threads > 1:
-            numba.set_num_threads(min(self.num_threads, numba.config.NUMBA_NUM_THREADS))
+            numba.set_num_threads(min(self.num_threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]  # numba.config sets it through globals()
         red = sim.advance(self.substeps, self.commands, danger_roll=self.dangerous_roll)
         max_abs = red.max_abs_roll
         # capsize flags, roll statistics, wrap(ψ_ref − ψ) (once per step: the observation, the
@@ -683,7 +685,7 @@ class ShipTask(BatchedTask, abc.ABC):
     # ------------------------------------------------------------------ observations
     def heading_error(self) -> NDArray:
         """(N,) wrap(ψ_ref − ψ) [rad] in [−π, π)."""
-        return (self.heading_setpoint - self.sim.eta[:, 5] + math.pi) % _TWO_PI - math.pi
+        return wrap_angle(self.heading_setpoint - self.sim.eta[:, 5])
 
     def _current_heading_error(self) -> NDArray:
         """:meth:`heading_error` after the engine call of the step being taken (computed once

@@ -14,7 +14,9 @@ if TYPE_CHECKING:
     pass
 
 
-def check_range(name: str, value: Any, *, low: float, high: float, unit: str) -> tuple:
+def check_range(
+    name: str, value: Any, *, low: float, high: float, unit: str
+) -> tuple[float, float]:
     """A (min, max) pair of floats with low ≤ min ≤ max ≤ high, else ValueError."""
     try:
         lo, hi = (float(v) for v in value)

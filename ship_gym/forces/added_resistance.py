@@ -103,7 +103,7 @@ Regression of model tests over C_B ≈ 0.5–0.9 (container ships to tankers and
 Fn ≤ ≈ 0.3, deep water, L ≥ 100 m, even keel or moderate trim. For the S175 (C_B = 0.57,
 L/B = 6.9, B/T = 2.67, k_yy = 0.24) at Fn = 0.25 in head seas the peak σ_AW ≈ 9.9 at
 λ/L ≈ 1.15 (motion part 9.4 + reflection 0.5; 6.3 at λ/L ≈ 1.0 for Fn = 0.15); see
-``tests/physics/test_added_resistance.py`` for the checks against published values and their
+``tests/forces/test_added_resistance.py`` for the checks against published values and their
 tolerances.
 
 References
@@ -131,9 +131,10 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ship_gym.conventions import GRAVITY, RHO_SEAWATER, SURGE, YAW
+from ship_gym.conventions import GRAVITY, RHO_SEAWATER, SURGE, YAW, wrap_angle
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.hull.hull import Hull
+from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.waves.sea_state import IrregularSea
 from ship_gym.waves.wave_field import WaveField
 
@@ -307,7 +308,7 @@ def _fold_heading(beta: ArrayLike) -> NDArray:
     """ship_gym relative heading β (any value) → α ∈ [0, π] (π head seas), port–starboard
     symmetric."""
     b = np.asarray(beta, dtype=float)
-    return np.abs((b + math.pi) % _TWO_PI - math.pi)
+    return np.abs(wrap_angle(b))
 
 
 def snnm_components(
@@ -666,8 +667,9 @@ class AddedResistance(ForceModel):
         u = self._speed(ctx)
         if (
             self._psi_ref is None
+            or self._u_ref is None
             or abs(u - self._u_ref) > self._speed_tol
-            or abs((psi - self._psi_ref + math.pi) % _TWO_PI - math.pi) > self._heading_tol
+            or abs(wrap_angle_scalar(psi - self._psi_ref)) > self._heading_tol
         ):
             self.mean_resistance = self.resistance_at(psi, u)
             self._psi_ref, self._u_ref = psi, u

@@ -90,6 +90,7 @@ from numpy.typing import ArrayLike, NDArray
 from ship_gym.conventions import DOF_NAMES, N_DOF, YAW
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.hydro.database import mirror_headings, split_frequencies
+from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.waves.wave_field import WaveField
 
 __all__ = ["Diffraction"]
@@ -419,11 +420,12 @@ class Diffraction(ForceModel):
         if (
             self._psi_ref is None
             or speed != self._u_ref
-            or abs((psi - self._psi_ref + math.pi) % _TWO_PI - math.pi) > self._heading_tol
+            or abs(wrap_angle_scalar(psi - self._psi_ref)) > self._heading_tol
         ):
             self._update(psi, speed)
+        assert self._psi_ref is not None  # set by _update
         folded = c * np.exp(-1j * (self._kx * eta[0] + self._ky * eta[1]))
-        dpsi = (psi - self._psi_ref + math.pi) % _TWO_PI - math.pi
+        dpsi = wrap_angle_scalar(psi - self._psi_ref)
         force = (folded.conj() @ (self._xd + dpsi * self._dxd)).real
         return force, empty
 
@@ -473,7 +475,7 @@ def refresh_diffraction_cache(psi, speed, diff, xd, dxd, diff_ref):  # pragma: n
 @nb.njit(cache=True, nogil=True)
 def diffraction_force(psi, local, xd, dxd, diff_ref, total):  # pragma: no cover - compiled
     """F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ), X_D cached at heading diff_ref[0]."""
-    dpsi = (psi - diff_ref[0] + math.pi) % _TWO_PI - math.pi
+    dpsi = wrap_angle_scalar(psi - diff_ref[0])
     for o in range(6):
         s = 0.0
         for j in range(local.shape[0]):

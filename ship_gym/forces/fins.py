@@ -69,6 +69,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from functools import partial
 
 from ship_gym.conventions import RHO_SEAWATER
 from ship_gym.forces.base import ForceContext
@@ -77,9 +78,9 @@ from ship_gym.forces.lifting_surface import LiftingSurface, LiftSlopeModel, Surf
 __all__ = ["RollFins", "SternFlaps", "TFoil"]
 
 
-def _finite(name: str, value: object) -> float:
+def _finite(name: str, value: float) -> float:
     try:
-        v = float(value)  # type: ignore[arg-type]
+        v = float(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value!r}; expected a finite number") from None
     if not math.isfinite(v):
@@ -184,15 +185,16 @@ class RollFins(_ControlSurfaces):
         y_f = _finite("y", y)
         if y_f <= 0.0:
             raise ValueError(f"y={y!r}; expected the (positive) lateral distance of each fin [m]")
-        common = {
-            "aspect_ratio_factor": aspect_ratio_factor,
-            "lift_slope_model": lift_slope_model,
-            "stall_angle": stall_angle,
-            "zero_lift_drag": zero_lift_drag,
-            "rho": rho,
-        }
-        starboard = LiftingSurface(area, span, (x, y_f, z), (0.0, -1.0, 0.0), **common)
-        port = LiftingSurface(area, span, (x, -y_f, z), (0.0, 1.0, 0.0), **common)
+        fin = partial(
+            LiftingSurface,
+            aspect_ratio_factor=aspect_ratio_factor,
+            lift_slope_model=lift_slope_model,
+            stall_angle=stall_angle,
+            zero_lift_drag=zero_lift_drag,
+            rho=rho,
+        )
+        starboard = fin(area, span, (x, y_f, z), (0.0, -1.0, 0.0))
+        port = fin(area, span, (x, -y_f, z), (0.0, 1.0, 0.0))
         super().__init__([starboard, port], max_angle=max_angle, wake_fraction=wake_fraction)
 
     @property

@@ -20,7 +20,7 @@ Three implementations, which the tests hold to 1e-6 (2e-6 for ``fast32``) relati
   ship's horizontal position folded into one modulus and phase per component. The integration
   counts every triangle as wet through precomputed per-vertex weights and corrects only the
   triangles that cross the surface. The polynomials run at the floating-point throughput limit
-  (details in the comments of the kernel section; ``scripts/bench_froude_krylov.py``). A
+  (details in the comments of the kernel section; ``benchmarks/bench_froude_krylov.py``). A
   batched variant evaluates many ships in one call, optionally with numba threads
   (``parallel=True``).
 * ``method="fast32"``: the same kernel with the wave sums (elevation and dynamic pressure) in
@@ -142,8 +142,8 @@ class WaveComponents:
 
 
 # ----------------------------------------------------------------------------- fast kernel
-# Layout and flags (DESIGN.md §5; measured on a 2-core AVX2/FMA machine with
-# scripts/bench_froude_krylov.py):
+# Layout and flags (DESIGN.md §5; chosen by measurement with benchmarks/bench_froude_krylov.py on
+# a 2-core AVX2/FMA machine, the figures in docs/benchmarks.md):
 #
 # * Vertices are processed in blocks of _BLOCK, *components in the outer loop and vertices in the
 #   inner loop*: every hot loop vectorises across vertices, with no reduction over components, so
@@ -152,7 +152,8 @@ class WaveComponents:
 #   (component, vertex) pair, Re cⱼ e^{−iθ}, is computed once, kept in a block buffer, and shared
 #   by the elevation sum and the pressure sum. The inner loops are small @njit functions called
 #   with offsets (no slices, whose array objects cost reference counting per call) and unsigned
-#   indices (numba's negative-index wraparound costs ~30 % in these loops).
+#   indices (numba's negative-index wraparound code slows these loops markedly; measured:
+#   docs/benchmarks.md).
 # * Phases are formed in turns (kⱼ cos χⱼ / 2π per call), and each component enters as modulus
 #   and phase offset, Re cⱼ e^{−iθ} = |cⱼ| cos(θ − arg cⱼ): the spatial term is one cosine
 #   (:func:`~ship_gym.numerics.fastmath.cos_turns`: range reduction by one exact subtraction, one
@@ -160,8 +161,8 @@ class WaveComponents:
 #   the phase, against 22 with sin and cos). The decay e^{−k d} = 2^{−(k/ln2) d} needs no
 #   Cody–Waite step either (:func:`~ship_gym.numerics.fastmath.exp2_neg`; 13 operations per pair
 #   with the product and the sum). Both are the "kernel tier" polynomials of fastmath (errors
-#   ≲ 1e-12; forces within ~1e-13 of the libm reference; 12 % faster than the few-ulp ones).
-#   The FMA units execute these at ≈ 0.8–1 ns per pair: the kernel runs at that limit
+#   ≲ 1e-12; forces within ~1e-13 of the libm reference; faster than the few-ulp ones).
+#   The kernel runs at the FMA units' throughput limit for these (measured: docs/benchmarks.md)
 #   (not memory- or overhead-bound: two components per loop, other block sizes or fewer stores
 #   change nothing measurable).
 # * The kernel's vertex order is sorted by body z (:class:`_KernelLayout`), so the vertices of a
@@ -180,11 +181,12 @@ class WaveComponents:
 #   crossing triangles replace their whole-triangle term by their cut part. A cut piece lies in
 #   its triangle's plane, so its area vector is a known multiple of the triangle's (precomputed,
 #   ``_KernelLayout.areas``): one scalar and one cross product per crossing triangle. With
-#   unsigned vertex indices (no wraparound code) the whole integration of the 1500-face S175
-#   costs ≈ 6 µs, mostly the scan of the candidate triangles (their depth gathers); a
-#   branch-free two-pass scan was not faster.
-# * Work arrays are allocated per call inside the kernel (≈ 1 µs); there is no shared mutable
-#   state, the kernels release the GIL (nogil), and concurrent calls from Python threads are safe.
+#   unsigned vertex indices (no wraparound code) the time of the whole integration (of the
+#   1500-face S175: docs/benchmarks.md) is mostly the scan of the candidate triangles (their depth
+#   gathers); a branch-free two-pass scan was not faster.
+# * Work arrays are allocated per call inside the kernel (a small cost: docs/benchmarks.md);
+#   there is no shared mutable state, the kernels release the GIL (nogil), and concurrent calls
+#   from Python threads are safe.
 # * Threads: the default is serial. ``parallel=True`` in the batch runs a numba prange over ships
 #   (numba's OpenMP layer, ``NUMBA_NUM_THREADS`` = cores). torch's intra-op pool in the same
 #   process competes for the same cores (two OpenMP runtimes, whose workers spin for a while
@@ -193,7 +195,7 @@ class WaveComponents:
 #   scheduler slice (milliseconds). For RL training on few cores keep the default and run
 #   environments in separate processes, or give the pools disjoint shares (numba.set_num_threads
 #   / torch.set_num_threads) and benchmark that setting
-#   (``scripts/bench_froude_krylov.py --parallel --torch``).
+#   (``benchmarks/bench_froude_krylov.py --parallel --torch``).
 _FM = {"contract", "nsz"}
 _BLOCK = 256  # vertices per elevation block (a multiple of _SUB)
 _SUB = 64  # vertices per pressure sub-block (a multiple of 4)
@@ -266,7 +268,8 @@ def _spatial_row(
     spatial[s0 + u]; ζᵤ += S (u < n).
 
     Offsets into flat buffers instead of slices (no array objects, with their reference counts,
-    per call), unsigned so that numba emits no negative-index wraparound (≈ 30 % slower).
+    per call), unsigned so that numba emits no negative-index wraparound (slower; measured:
+    docs/benchmarks.md).
     """
     vo = nb.uint64(v0)
     so = nb.uint64(s0)
@@ -342,7 +345,8 @@ def _integrate(
         last_wet -= 1
     third = 1.0 / 3.0
     twelfth = 1.0 / 12.0
-    for t in range(nb.uint64(np.searchsorted(tri_last, first_dry)), nb.uint64(tri.shape[0])):
+    n_tri: int = tri.shape[0]
+    for t in range(nb.uint64(np.searchsorted(tri_last, first_dry)), nb.uint64(n_tri)):
         if tri_first[t] > last_wet:
             continue
         # (unsigned indices: no negative-index wraparound code)
@@ -488,7 +492,7 @@ def _fk_core(
     """The kernel after the per-component set-up (:func:`_fk_one_ship`): wave vectors kxt, kyt
     [turns/m], k2 = k/ln 2 [1/m], moduli [m] and phase offsets [turns] of the components at
     the ship's O, crest = Σ mod ≥ ζ; adds the earth-axis force and moment about O to out."""
-    n_v = body.shape[1]
+    n_v: int = body.shape[1]
     n_c = kxt.shape[0]
     rx = np.empty(n_v)
     ry = np.empty(n_v)
@@ -578,7 +582,7 @@ def _fk_core(
 # are summed in float32. Errors: the phase in turns is formed in float32 (|t| ≲ 8 turns for
 # the S175 in a Tp = 11 s sea: ≲ 5e-7 turn), each term carries ≲ 3e-7 of its amplitude, so ζ
 # and the dynamic pressure are off by ~1e-6 of their size; the force and moment by ~1e-7 of the
-# hydrostatic ones (tests/physics/test_froude_krylov.py holds them to the reference at 2e-6).
+# hydrostatic ones (tests/forces/test_froude_krylov.py holds them to the reference at 2e-6).
 # The pair loops use the lean float32 polynomials (:func:`~ship_gym.numerics.fastmath.
 # cos_turns_nonneg_f32`: degree 8, the modulus folded into the coefficients, 7 multiply/FMA
 # operations per pair besides the phase; :func:`~ship_gym.numerics.fastmath.
@@ -586,26 +590,27 @@ def _fk_core(
 # field, no clamp, 7 with the product and the sum). The clamp is hoisted to the sub-block:
 # a component whose (k/ln 2)·max d reaches 125 there takes the clamped
 # :func:`~ship_gym.numerics.fastmath.exp2_neg_f32` (never in ordinary seas). Against the
-# degree-10/6 polynomials with a clamp per pair, ≈ 13 % less kernel time (S175-full,
-# 1500 faces, Hs 5 m: elevation pass ≈ 0.23 ns, pressure pass ≈ 0.27 ns per pair), and the
-# forces stay as close to the float64 reference (≲ 3e-7 of the force scale over S175-full
-# states, ≲ 1.4e-7 on the tests' seas). Tried without gain: two components per pair loop
-# (elevation or pressure), Estrin evaluation of 2^x, numba-inlined pair loops (slower);
-# pressure sub-blocks of 128 vertices are ≈ 3 % faster than 64, elevation blocks of 128 not
-# faster than 256 (nor are 512–1536 with sub-blocks of 128–512: within ±5 %, outputs
-# bit-identical). Also tried, on S175-full states (1500 vertices, ≈ 1/3 of them dry, ≈ 220
+# degree-10/6 polynomials with a clamp per pair, less kernel time (S175-full, 1500 faces, Hs 5 m;
+# measured: docs/benchmarks.md), and the forces stay as close to the float64 reference (≲ 3e-7
+# of the force scale over S175-full states, ≲ 1.4e-7 on the tests' seas). Tried without gain:
+# two components per pair loop (elevation or pressure), Estrin evaluation of 2^x, numba-inlined
+# pair loops (slower);
+# pressure sub-blocks of 128 vertices are faster than 64, elevation blocks of 128 not faster
+# than 256 (nor are 512–1536 with sub-blocks of 128–512; outputs bit-identical; the timings in
+# docs/benchmarks.md). Also tried, on S175-full states (1500 vertices, ≈ 1/3 of them dry, ≈ 220
 # crossing triangles):
 #   - skipping the vertices that are certainly dry with all their neighbours (a long-crested
 #     sea is a 1-D function ζ(s) of the projection s on the wave direction: ζ on a coarse grid
 #     of s plus the bound max|ζ''| h²/8 = Σ|cⱼ|kⱼ² h²/8 gives a local crest; outputs
 #     bit-identical): it skips 110–420 of the 1500 vertices, but the per-vertex classification,
 #     the compaction of the kept vertices and the scatter back are scalar loops that cost
-#     ≈ 1–2 ns per vertex each, more than the ≈ 13 ns of wave sums saved per skipped vertex
-#     (kernel +8 to +12 µs);
+#     more per vertex than the wave sums saved per skipped vertex (the kernel got slower;
+#     docs/benchmarks.md);
 #   - sorting the vertices by body-z bands, then x (the pressure rows' padding is ≈ 10 % of the
 #     wet vertices with the plain body-z order; ≤ 3 % less with the others);
 #   - finding the crossing triangles in two passes (a branch-free mixed-wetness flag and a
-#     compaction, then the cut of those only): 8–10 µs against 5.5–6.5 µs for the branchy scan.
+#     compaction, then the cut of those only): slower than the branchy scan
+#     (docs/benchmarks.md).
 _F32 = np.float32
 _SUB_F32 = 128  # vertices per pressure sub-block of the float32 kernel (a multiple of 8)
 _DECAY_CUTOFF_F32 = 30.0  # 2^−30 ≈ 1e-9: below float32 resolution of the sum
@@ -757,7 +762,7 @@ def _fk_core_f32(
 ) -> None:  # pragma: no cover - compiled
     """:func:`_fk_core` with the wave sums in float32: kxt, kyt, k2, mod and offset are float32
     arrays."""
-    n_v = body.shape[1]
+    n_v: int = body.shape[1]
     n_c = kxt.shape[0]
     # A long-crested sea (all components along one direction ±(ux, uy), the usual case): the
     # phase is kⱼ/2π times the one projection s = ux x + uy y, formed once per vertex, so the
@@ -855,8 +860,16 @@ def _fk_core_f32(
     _integrate(tri, tri_last, tri_first, body, weights, areas, rot, depth, pres, out)
 
 
+# a mesh's kernel arrays: body, tri, tri_last, tri_first, spread, weights, areas
+MeshArrays = tuple[
+    np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray
+]
+
+
 @nb.njit(cache=True, nogil=True)
-def _fk_batch_ship(s, mesh, rot, z0, k, cx, sx, amp, rho_g, out, single):  # pragma: no cover
+def _fk_batch_ship(
+    s, mesh: MeshArrays, rot, z0, k, cx, sx, amp, rho_g, out, single
+):  # pragma: no cover
     """Ship s of a batch: the float32 or float64 one-ship kernel (``mesh`` = its 7 arrays)."""
     if single:
         _fk_one_ship_f32(*mesh, rot[s], 0.0, 0.0, z0[s], k[s], cx[s], sx[s], amp[s], rho_g, out[s])
@@ -955,8 +968,8 @@ def froude_krylov_hydrostatic(
     rotation = np.ascontiguousarray(rotation, dtype=np.float64)
     if method in ("fast", "fast32"):
         kernel = _fk_one_ship_f32 if method == "fast32" else _fk_one_ship
-        # the kernel folds the horizontal position into the amplitudes itself (saves ~6 µs of
-        # numpy calls per evaluation)
+        # the kernel folds the horizontal position into the amplitudes itself (saves the numpy
+        # calls of doing it here, per evaluation; measured: docs/benchmarks.md)
         out = np.zeros(6)
         lay = panels._layout
         kernel(

@@ -112,6 +112,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ship_gym.conventions import RHO_SEAWATER
 from ship_gym.forces.base import ForceContext, ForceModel
+from ship_gym.numerics.angles import wrap_angle_scalar
 
 __all__ = [
     "LiftSlopeModel",
@@ -417,13 +418,13 @@ class LiftingSurface:
         cx, cy, cz = self._chord
         tx, ty, tz = self._lead
         theta = math.atan2(px * tx + py * ty + pz * tz, px * cx + py * cy + pz * cz)
-        alpha = (delta - theta + math.pi) % (2.0 * math.pi) - math.pi
+        alpha = wrap_angle_scalar(delta - theta)
         return alpha, speed, (px, py, pz)
 
     @staticmethod
     def _check_inputs(velocity: ArrayLike, deflection: float) -> tuple[float, float, float, float]:
         try:
-            vx, vy, vz = (float(c) for c in velocity)  # type: ignore[union-attr]
+            vx, vy, vz = (float(c) for c in np.asarray(velocity))
             delta = float(deflection)
         except (TypeError, ValueError):
             raise ValueError(
@@ -655,7 +656,7 @@ def surface_group_force(
             px * lead[k, 0] + py * lead[k, 1] + pz * lead[k, 2],
             px * chord[k, 0] + py * chord[k, 1] + pz * chord[k, 2],
         )
-        alpha = (d - theta + math.pi) % (2.0 * math.pi) - math.pi
+        alpha = wrap_angle_scalar(d - theta)
         cl, cd = section_coefficients(
             alpha, lift_slope[k], stall[k], transition[k], cd0[k], k_induced[k], cn[k]
         )

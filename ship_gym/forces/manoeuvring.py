@@ -97,7 +97,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypedDict, Unpack
 
 import numba as nb
 import numpy as np
@@ -105,6 +105,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ship_gym.conventions import RHO_SEAWATER
 from ship_gym.forces.base import ForceContext, ForceModel
+from ship_gym.typing import FloatArray
 
 if TYPE_CHECKING:
     from ship_gym.hull.hull import Hull
@@ -131,9 +132,9 @@ by Leite et al. 1998; the steep drop near B/2T ≈ 0.5 is the change from a shar
 round-bilged flow)."""
 
 
-def _positive(name: str, value: object) -> float:
+def _positive(name: str, value: float) -> float:
     try:
-        v = float(value)  # type: ignore[arg-type]
+        v = float(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value!r}; expected a positive number") from None
     if not (math.isfinite(v) and v > 0.0):
@@ -287,7 +288,7 @@ class CrossFlowStrips:
             raise ValueError(f"n_strips={n_strips!r}; expected a positive integer")
         n = int(n_strips)
         dx = length / n
-        x = -0.5 * length + dx * (np.arange(n) + 0.5)
+        x = -0.5 * length + dx * (np.arange(n, dtype=np.float64) + 0.5)
         cd = float(hoerner_crossflow_coefficient(b / (2.0 * t)))
         return cls(x, np.full(n, t * dx), np.full(n, cd), 0.5 * t)
 
@@ -320,7 +321,8 @@ class CrossFlowStrips:
             raise ValueError(f"mesh {mesh.name!r} has no length; expected an immersed hull mesh")
         edges = np.linspace(x0, x1, n + 1)
         idx = np.clip(np.searchsorted(edges, c[:, 0], side="right") - 1, 0, n - 1)
-        a_lat = np.bincount(idx, weights=lat, minlength=n)
+        # weighted counts are float64 (numpy's stub types every bincount as intp)
+        a_lat = np.bincount(idx, weights=lat, minlength=n).astype(np.float64, copy=False)
         a_bot = np.bincount(idx, weights=bottom, minlength=n)
         x_mom = np.bincount(idx, weights=lat * c[:, 0], minlength=n)
         keep = a_lat > 1e-9 * max(float(a_lat.max()), 1e-300)
@@ -329,6 +331,21 @@ class CrossFlowStrips:
         cd = np.asarray(hoerner_crossflow_coefficient(ratio))
         z_h = float(np.sum(lat * c[:, 2]) / np.sum(lat))
         return cls(x, a_lat[keep], cd, z_h)
+
+
+class _HullManoeuvringOptions(TypedDict, total=False):
+    """The keyword arguments of :class:`HullManoeuvring` that :meth:`~HullManoeuvring.from_hull`
+    passes on."""
+
+    derivatives: LinearDerivatives | None
+    roll_lever: float | None
+    crossflow: bool
+    rho: float
+
+
+# the arguments of manoeuvring_force after ν: c_yv, c_yr, c_nv, c_nr, ½ρ C_D dA, x, the
+# cross-flow switch and z_H
+ManoeuvringKernelParameters = tuple[float, float, float, float, FloatArray, FloatArray, bool, float]
 
 
 class HullManoeuvring(ForceModel):
@@ -420,7 +437,7 @@ class HullManoeuvring(ForceModel):
         *,
         n_strips: int = 50,
         block_coefficient: float | None = None,
-        **kwargs: object,
+        **kwargs: Unpack[_HullManoeuvringOptions],
     ) -> HullManoeuvring:
         """Model for a :class:`~ship_gym.hull.Hull`, with strips from its immersed mesh.
 
@@ -450,13 +467,14 @@ class HullManoeuvring(ForceModel):
             p.draught,
             block_coefficient,
             strips=strips,
-            **kwargs,  # type: ignore[arg-type]
+            **kwargs,
         )
 
     # ------------------------------------------------------------------ parts
     def linear_force(self, nu: ArrayLike) -> tuple[float, float]:
         """(Y, N) of eq. (1) [N, N·m] for body velocities ν = (u, v, w, p, q, r)."""
-        u, v, r = float(nu[0]), float(nu[1]), float(nu[5])  # type: ignore[index]
+        nn = np.asarray(nu)
+        u, v, r = float(nn[0]), float(nn[1]), float(nn[5])
         au = abs(u)
         return (
             self._c_yv * au * v + self._c_yr * u * r,
@@ -465,7 +483,8 @@ class HullManoeuvring(ForceModel):
 
     def crossflow_force(self, nu: ArrayLike) -> tuple[float, float]:
         """(Y_cf, N_cf) of eq. (3) [N, N·m] for body velocities ν = (u, v, w, p, q, r)."""
-        v, r = float(nu[1]), float(nu[5])  # type: ignore[index]
+        nn = np.asarray(nu)
+        v, r = float(nn[1]), float(nn[5])
         vl = v + self._x * r
         f = self._cda * np.abs(vl) * vl
         return -float(f.sum()), -float(f @ self._x)
@@ -480,7 +499,7 @@ class HullManoeuvring(ForceModel):
         manoeuvring_force(nu, *self.kernel_parameters(), force)
         return force, np.zeros(0)
 
-    def kernel_parameters(self) -> tuple:
+    def kernel_parameters(self) -> ManoeuvringKernelParameters:
         """The arguments of :func:`manoeuvring_force` after ν: the dimensional Clarke factors
         (Y_v, Y_r, N_v, N_r scaled by ½ρ and L) [N·s/m, N·s, N·s, N·m·s], the strips' ½ρ C_D
         dA [kg/m] and x [m], the cross-flow switch and z_H [m]."""

@@ -114,6 +114,7 @@ from ship_gym.conventions import RHO_SEAWATER, SURGE
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.forces.resistance import CalmWaterResistance, HoltropMennen, ResistanceParticulars
 from ship_gym.hull.hull import Hull
+from ship_gym.typing import FloatArray
 
 SHAFT_SPEED_COMMAND: str = "shaft_speed"
 """Key of the shaft-speed command in ``ForceContext.commands``; value in rev/s."""
@@ -331,19 +332,22 @@ class WageningenB:
 
     def kt(self, j: ArrayLike) -> np.ndarray | float:
         """Thrust coefficient K_T(J) [-] of the polynomial (valid for 0 ≤ J ≤ J₀)."""
-        if np.ndim(j) == 0:
-            return _horner(self.kt_coefficients, float(j))
-        return _horner(self.kt_coefficients, np.asarray(j, dtype=float))
+        jj = np.asarray(j)
+        if jj.ndim == 0:
+            return _horner(self.kt_coefficients, float(jj))
+        return _horner(self.kt_coefficients, np.asarray(jj, dtype=float))
 
     def kq(self, j: ArrayLike) -> np.ndarray | float:
         """Torque coefficient K_Q(J) [-] of the polynomial (valid for 0 ≤ J ≤ J₀)."""
-        if np.ndim(j) == 0:
-            return _horner(self.kq_coefficients, float(j))
-        return _horner(self.kq_coefficients, np.asarray(j, dtype=float))
+        jj = np.asarray(j)
+        if jj.ndim == 0:
+            return _horner(self.kq_coefficients, float(jj))
+        return _horner(self.kq_coefficients, np.asarray(jj, dtype=float))
 
     def efficiency(self, j: ArrayLike) -> np.ndarray | float:
         """Open-water efficiency η₀ = J K_T / (2π K_Q) [-]."""
-        jj = float(j) if np.ndim(j) == 0 else np.asarray(j, dtype=float)
+        arr = np.asarray(j)
+        jj = float(arr) if arr.ndim == 0 else np.asarray(arr, dtype=float)
         return jj * self.kt(jj) / (2.0 * math.pi * self.kq(jj))
 
     def coefficients_extended(self, j: float) -> tuple[float, float]:
@@ -586,6 +590,14 @@ class PropellerDesign:
 
 
 # ------------------------------------------------------------------------------ force model
+
+# the arguments of propeller_force after (u, n): K_T and K_Q coefficients, J₀, D, ρD⁴, 1 − w,
+# 1 − t, η_R, the astern factor, z_P, y_P and the sign of the roll reaction
+PropellerKernelParameters = tuple[
+    FloatArray, FloatArray, float, float, float, float, float, float, float, float, float, float
+]
+
+
 class Propeller(ForceModel):
     """A propeller behind the hull, driven by a shaft-speed command (eq. 2).
 
@@ -774,7 +786,7 @@ class Propeller(ForceModel):
             return None
         return self.operating_point(*self._last_inputs)
 
-    def kernel_parameters(self) -> tuple:
+    def kernel_parameters(self) -> PropellerKernelParameters:
         """The arguments of :func:`propeller_force` after (u, n): open-water coefficients and
         J₀, D [m], ρD⁴ [kg·m], 1 − w, 1 − t, η_R, the astern factor, z_P, y_P [m] and the sign
         of the roll reaction (0 without it)."""

@@ -63,8 +63,10 @@ from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.hydro.database import HydroArrays, as_arrays
 from ship_gym.hydro.retardation import (
     KernelDecay,
+    Method,
     ReconstructionError,
     RetardationKernels,
+    Tail,
     compute_kernels,
     kernel_decay,
     reconstruction_error,
@@ -291,9 +293,9 @@ class RadiationMemory(ForceModel):
         method: MemoryMethod = "state_space",
         dt: float | None = None,
         t_max: float = 60.0,
-        tail: str = "power",
-        tail_exponent: int | str = "fit",
-        quadrature: str = "filon",
+        tail: Tail = "power",
+        tail_exponent: int | Literal["fit"] = "fit",
+        quadrature: Method = "filon",
         kernel_refinement: int = 2,
         fit_options: Mapping[str, Any] | None = None,
         commit_tolerance: float = 1e-6,
@@ -328,9 +330,9 @@ class RadiationMemory(ForceModel):
                     self.A_inf,
                     t_max=window,
                     dt=grid,
-                    method=quadrature,  # type: ignore[arg-type]
-                    tail=tail,  # type: ignore[arg-type]
-                    tail_exponent=tail_exponent,  # type: ignore[arg-type]
+                    method=quadrature,
+                    tail=tail,
+                    tail_exponent=tail_exponent,
                 ),
             )
 
@@ -342,7 +344,7 @@ class RadiationMemory(ForceModel):
         if method == "convolution":
             if dt is None:
                 raise ValueError("method='convolution' needs dt, the committed time step [s]")
-            self.dt = _check_positive("dt", dt)
+            self.dt = self._dt = _check_positive("dt", dt)
             if int(kernel_refinement) != kernel_refinement or kernel_refinement < 1:
                 raise ValueError(
                     f"kernel_refinement={kernel_refinement!r}; expected an integer ≥ 1"
@@ -396,7 +398,7 @@ class RadiationMemory(ForceModel):
     def _setup_convolution(self, n_steps: int) -> None:
         kern = self.kernels
         self._n_kernel = n_steps + 1  # nodes s = 0, dt, …, t_max
-        self.t_max: float = n_steps * float(self.dt)  # type: ignore[arg-type]
+        self.t_max: float = n_steps * self._dt
         self._k_fine = np.ascontiguousarray(kern.K)
         self._spline = CubicSpline(kern.t, kern.K, axis=0)
         self._k0 = self._k_fine[0].copy()
@@ -419,7 +421,7 @@ class RadiationMemory(ForceModel):
 
     def _shifted(self, h: float) -> tuple[NDArray, NDArray, int]:
         """(flattened weighted kernel (6, 6N), shifted kernel (N, 6, 6), last used node J)."""
-        dt = float(self.dt)  # type: ignore[arg-type]
+        dt = self._dt
         key = round(h / dt * 1e9)
         hit = self._shift_cache.get(key)
         if hit is not None:
@@ -487,7 +489,7 @@ class RadiationMemory(ForceModel):
         if self.method != "convolution":
             return
         self._require_reset()
-        dt = float(self.dt)  # type: ignore[arg-type]
+        dt = self._dt
         t_last = self._t0 + self._count * dt
         t = float(ctx.t)
         if abs(t - t_last) <= self._tol * dt:
@@ -511,7 +513,7 @@ class RadiationMemory(ForceModel):
 
     def _memory_convolution(self, ctx: ForceContext, v: NDArray[np.float64]) -> NDArray:
         self._require_reset()
-        dt = float(self.dt)  # type: ignore[arg-type]
+        dt = self._dt
         t_n = self._t0 + self._count * dt
         h = float(ctx.t) - t_n
         if h < -self._tol * dt or h > dt * (1.0 + self._tol):
@@ -740,7 +742,7 @@ class ConstantCoefficientRadiation(ForceModel):
             b_r = np.asarray(damping(w_r), dtype=float)
             a[ROLL, :], a[:, ROLL] = a_r[ROLL, :], a_r[:, ROLL]
             b[ROLL, :], b[:, ROLL] = b_r[ROLL, :], b_r[:, ROLL]
-        self.added_mass = a
+        self.added_mass: NDArray[np.float64] = a
         self.damping: NDArray[np.float64] = b
         self._empty = np.zeros(0)
 

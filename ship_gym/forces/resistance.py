@@ -83,7 +83,7 @@ and compiled code (the simulation engine, per ship and step) calls them directly
 
 Verification: the worked example of Holtrop & Mennen (1982) (L = 205 m, B = 32 m, T = 10 m,
 ∇ = 37 500 m³, 25 kn: R_F = 869.63 kN, 1 + k1 = 1.156, R_W = 557.11 kN, R_A = 221.98 kN,
-R_T = 1793.26 kN) is reproduced by ``variant="1982"`` in ``tests/physics/test_propulsion.py``.
+R_T = 1793.26 kN) is reproduced by ``variant="1982"`` in ``tests/forces/test_propulsion.py``.
 
 References
 ----------
@@ -998,9 +998,10 @@ class HoltropMennen:
 
     def total(self, speed: ArrayLike) -> np.ndarray | float:
         """Total calm-water resistance R_T(|U|) ≥ 0 [N] (eq. 1) at speed(s) U [m/s]."""
-        if np.ndim(speed) == 0:
-            return holtrop_total(self._params, float(speed))
-        arr = np.asarray(speed, dtype=float)
+        arr = np.asarray(speed)
+        if arr.ndim == 0:
+            return holtrop_total(self._params, float(arr))
+        arr = np.asarray(arr, dtype=float)
         params = self._params
         return np.array([holtrop_total(params, v) for v in arr.ravel().tolist()]).reshape(arr.shape)
 
@@ -1208,9 +1209,10 @@ class CalmWaterResistance(ForceModel):
 
     def resistance(self, speed: ArrayLike) -> np.ndarray | float:
         """R_T(|U|) ≥ 0 [N] at speed(s) U [m/s] (the magnitude of the surge force)."""
-        if np.ndim(speed) == 0:
-            return float(self._curve(abs(float(speed))))
-        arr = np.abs(np.asarray(speed, dtype=float))
+        arr = np.asarray(speed)
+        if arr.ndim == 0:
+            return float(self._curve(abs(float(arr))))
+        arr = np.abs(np.asarray(arr, dtype=float))
         return np.array([float(self._curve(v)) for v in arr.ravel()]).reshape(arr.shape)
 
     def surge_force(self, u: ArrayLike) -> np.ndarray | float:

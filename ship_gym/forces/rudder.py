@@ -119,9 +119,9 @@ S175_RUDDER_ASPECT_RATIO = 1.8219
 """Geometric aspect ratio of the S175 rudder [-] (Son & Nomoto 1982)."""
 
 
-def _finite(name: str, value: object) -> float:
+def _finite(name: str, value: float) -> float:
     try:
-        v = float(value)  # type: ignore[arg-type]
+        v = float(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value!r}; expected a finite number") from None
     if not math.isfinite(v):
@@ -137,7 +137,7 @@ def _velocities(ctx: ForceContext) -> tuple[float, float, float, float, float, f
         vals = ()
     if len(vals) != 6 or not all(map(math.isfinite, vals)):
         raise ValueError(f"ctx.nu={ctx.nu!r}; expected a finite (6,) velocity vector")
-    return vals  # type: ignore[return-value]
+    return vals
 
 
 def _slipstream(

@@ -508,9 +508,13 @@ class IkedaRollDamping:
     def nondimensional(self) -> dict[str, float]:
         """B̂ of each component and of the total (keys as the attributes, plus ``"total"``)."""
         p = self.particulars
-        kw = {"rho": p.rho, "volume": p.volume, "beam": p.beam, "g": p.g, "order": 1}
         names = ("friction", "eddy", "lift", "bilge_keel", "total")
-        return {n: nondimensional_roll_damping(getattr(self, n), **kw) for n in names}
+        return {
+            n: nondimensional_roll_damping(
+                getattr(self, n), rho=p.rho, volume=p.volume, beam=p.beam, g=p.g, order=1
+            )
+            for n in names
+        }
 
 
 # ------------------------------------------------------------------------------ Ikeda method

@@ -53,7 +53,7 @@ import importlib.util
 import os
 from importlib import resources
 from pathlib import Path
-from typing import NamedTuple
+from typing import Literal, NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -71,7 +71,7 @@ _ATTR_SCALARS = (str, int, float, np.integer, np.floating)
 
 
 # ------------------------------------------------------------------------------ save / open
-def netcdf_engine() -> str:
+def netcdf_engine() -> Literal["h5netcdf", "netcdf4"]:
     """xarray engine used to write NetCDF-4: ``"h5netcdf"`` (needs h5py) or ``"netcdf4"``."""
     if importlib.util.find_spec("h5netcdf") and importlib.util.find_spec("h5py"):
         return "h5netcdf"
@@ -104,7 +104,7 @@ def _split_complex(ds: xr.Dataset) -> xr.Dataset:
                 new = xr.DataArray(values.values, dims=da.dims, attrs=dict(da.attrs))
                 new.attrs[_COMPLEX_TAG] = part
                 out[f"{name}_{part}"] = new
-            out = out.drop_vars(name)
+            out = out.drop_vars([name])
     return out
 
 
@@ -155,7 +155,7 @@ def save_database(ds: xr.Dataset, path: str | os.PathLike) -> Path:
 def _merge_ours(ds: xr.Dataset) -> xr.Dataset:
     out = ds.copy()
     for name in list(ds.data_vars):
-        if not name.endswith("_real"):
+        if not (isinstance(name, str) and name.endswith("_real")):
             continue
         base = name[: -len("_real")]
         imag = f"{base}_imag"

@@ -93,7 +93,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -129,9 +129,10 @@ Method = Literal["filon", "simpson", "trapezoid", "fft"]
 Form = Literal["sine", "cosine"]
 Tail = Literal["none", "power", "taper"]
 
-METHODS: tuple[str, ...] = ("filon", "simpson", "trapezoid", "fft")
-FORMS: tuple[str, ...] = ("sine", "cosine")
-TAILS: tuple[str, ...] = ("none", "power", "taper")
+METHODS: tuple[Method, ...] = ("filon", "simpson", "trapezoid", "fft")
+FORMS: tuple[Form, ...] = ("sine", "cosine")
+TAILS: tuple[Tail, ...] = ("none", "power", "taper")
+_Choice = TypeVar("_Choice", bound=str)
 
 FILON_SERIES_THRESHOLD: float = 0.4
 """θ = tΔω below which Filon's α, β, γ come from their Taylor series (see module docstring)."""
@@ -160,7 +161,7 @@ _GAMMA_SERIES = (4 / 3, -2 / 15, 1 / 210, -1 / 11340, 1 / 997920, -1 / 129729600
 # --------------------------------------------------------------------------------------------
 # validation helpers
 # --------------------------------------------------------------------------------------------
-def _check_choice(value: Any, name: str, allowed: tuple[str, ...]) -> str:
+def _check_choice(value: Any, name: str, allowed: tuple[_Choice, ...]) -> _Choice:
     if not isinstance(value, str) or value not in allowed:
         raise ValueError(f"{name}={value!r} is not supported; expected one of {allowed}")
     return value
@@ -851,7 +852,7 @@ def compute_kernels(
     if not (np.isfinite(t_max) and t_max >= 2 * dt):
         raise ValueError(f"t_max={t_max!r}; expected a finite time ≥ 2·dt = {2 * dt} [s]")
     n = round(t_max / dt)
-    t = dt * np.arange(n + 1)
+    t = dt * np.arange(n + 1, dtype=np.float64)
     k = velocity_kernel(
         omega,
         damping,
@@ -1183,7 +1184,11 @@ def kernel_decay(
 # plots (matplotlib imported lazily)
 # --------------------------------------------------------------------------------------------
 def _pair_index(pair: tuple[int | str, int | str]) -> tuple[int, int]:
-    return tuple(p if isinstance(p, int | np.integer) else dof_index(p) for p in pair)  # type: ignore[return-value]
+    i, j = pair
+    return (
+        i if isinstance(i, int | np.integer) else dof_index(i),
+        j if isinstance(j, int | np.integer) else dof_index(j),
+    )
 
 
 def _pair_label(i: int, j: int) -> str:

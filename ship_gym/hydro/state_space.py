@@ -241,7 +241,7 @@ _DAMPING_OMEGA = np.linspace(0.0, 3.0, 601)[1:]
 
 
 def _transfer_rows(
-    s: NDArray[np.complex128],
+    s: ArrayLike,
     real_poles: NDArray[np.float64],
     complex_poles: NDArray[np.complex128],
 ) -> NDArray[np.complex128]:

@@ -203,7 +203,7 @@ def read_wamit_hst(
     return c
 
 
-def _union_axis(*axes: np.ndarray) -> np.ndarray:
+def _union_axis(*axes: np.ndarray | None) -> np.ndarray:
     """Sorted union of frequency axes, merging values equal to 1e-9 relative."""
     values = np.sort(np.concatenate([np.asarray(a, dtype=float) for a in axes if a is not None]))
     out: list[float] = []
@@ -311,6 +311,7 @@ def read_wamit(
         {"added_mass": (dof3, a_full), "radiation_damping": (dof3, b_full)}, coords=coords
     )
     if x_wamit is not None:
+        assert w3 is not None  # read together with x_wamit
         x_full = np.full((n, len(beta_deg), 6), np.nan + 0j)
         x_full[_positions(omega, w3)] = np.conj(x_wamit)  # to Re(X e^{-iωt})
         ds_w["excitation_force"] = xr.DataArray(

@@ -1,10 +1,10 @@
 """Vectorisable float64 sin/cos and exp for numba hot loops.
 
 numba calls the scalar libm for ``math.cos``/``math.exp`` unless Intel SVML is available (it is not
-in the pip builds of llvmlite), and a libm call blocks LLVM's loop vectoriser: ~5–25 ns per
-element. These branch-free polynomial versions are inlined by LLVM into the caller's loop and
-vectorise (AVX2/FMA: ~1 ns per element for sin+cos, ~0.7 ns for exp), with errors of a few ulp.
-They are checked against numpy in ``tests/unit/test_fastmath.py``.
+in the pip builds of llvmlite), and a libm call blocks LLVM's loop vectoriser. These branch-free
+polynomial versions are inlined by LLVM into the caller's loop and vectorise (AVX2/FMA; the cost
+per element against libm is measured in docs/benchmarks.md), with errors of a few ulp.
+They are checked against numpy in ``tests/numerics/test_fastmath.py``.
 
 numba's on-disk cache (``cache=True``) of a *caller* is keyed on the caller's source file only:
 after editing this module, delete the callers' ``__pycache__/*.nbi``/``*.nbc`` (e.g. of
@@ -27,13 +27,15 @@ Design notes
 * Two accuracy tiers. :func:`sincos`, :func:`sincos_turns` and :func:`exp_neg` are accurate to
   a few ulp. :func:`cos_turns` and :func:`exp2_neg`, made for the wave-pressure kernel whose
   per-pair cost is nothing but these polynomials, drop one and two polynomial terms
-  (absolute error ≲ 1e-12 of the amplitude, relative ≲ 1.2e-12): 10–15 % less time there, and
-  forces that still agree with the libm reference to ~1e-13 (the kernel's tests ask 1e-6).
+  (absolute error ≲ 1e-12 of the amplitude, relative ≲ 1.2e-12): less time there (measured:
+  docs/benchmarks.md), and forces that still agree with the libm reference to ~1e-13 (the
+  kernel's tests ask 1e-6).
 * A float32 tier (:func:`cos_turns_f32`, :func:`exp2_neg_f32`, errors ≲ 3e-7) and, for the
   float32 Froude–Krylov kernel's pair loops, leaner float32 variants one degree lower
   (:func:`cos_turns_nonneg_f32`, amplitude folded into the coefficients, ≲ 6e-7;
   :func:`exp2_neg_unclamped_f32`, no clamp, ≲ 2.5e-7 relative): 7 multiply/FMA operations
-  per element each, ≈ 13 % less kernel time, forces as close to the float64 reference.
+  per element each, less kernel time (measured: docs/benchmarks.md), forces as close to the
+  float64 reference.
 """
 
 from __future__ import annotations
@@ -202,7 +204,7 @@ def _pow2_poly(x: float) -> float:  # pragma: no cover - compiled
 @nb.njit(fastmath=_FLAGS, cache=True)
 def _pow2_neg_int(n: float) -> float:  # pragma: no cover - compiled
     """2^−n for an integral float n with −1023 < n < 1023, from the IEEE exponent bits."""
-    return _bits_f64(_f64_bits((1023.0 + _MAGIC) - n) << 52)
+    return _bits_f64(_f64_bits((1023.0 + _MAGIC) - n) << 52)  # type: ignore[call-arg]  # numba's stub counts typingctx
 
 
 @nb.njit(fastmath=_FLAGS, cache=True)
@@ -310,14 +312,16 @@ def exp2_neg_f32(y: np.float32) -> np.float32:  # pragma: no cover - compiled
     n = np.rint(y)
     x = n - y
     p = _QF0 + x * (_QF1 + x * (_QF2 + x * (_QF3 + x * (_QF4 + x * (_QF5 + x * _QF6)))))
-    return p * _bits_f32(_f32_bits(_BIAS_MAGIC_F32 - n) << 23)
+    return p * _bits_f32(_f32_bits(_BIAS_MAGIC_F32 - n) << 23)  # type: ignore[call-arg]  # numba's stub counts typingctx
 
 
-# Leaner float32 variants for the Froude–Krylov kernel's two pair loops (measured there: ≈ 13 %
-# less kernel time than :func:`cos_turns_f32` / :func:`exp2_neg_f32`, forces as close to the
-# float64 reference; tests/unit/test_fastmath.py, tests/physics/test_froude_krylov.py). One degree
-# lower each, with the coefficients refitted in float32 (discrete minimax by linear programming,
-# rounding one coefficient to float32 at a time, low order first, and refitting the rest).
+# Leaner float32 variants for the Froude–Krylov kernel's two pair loops (less kernel time there
+# than :func:`cos_turns_f32` / :func:`exp2_neg_f32`, measured: docs/benchmarks.md; forces as
+# close to the float64 reference; tests/numerics/test_fastmath.py,
+# tests/forces/test_froude_krylov.py).
+# One degree lower each, with the coefficients refitted in float32 (discrete minimax by linear
+# programming, rounding one coefficient to float32 at a time, low order first, and refitting the
+# rest).
 # cos(π f) = Σ _CN[i] f^{2i}, |f| ≤ 1/2, minimax for the error of 2 cos²(π f) − 1 (weight
 # 4|cos π f|): 9.5e-8 with the float32 coefficients
 _CN0, _CN1, _CN2, _CN3, _CN4 = (
@@ -373,4 +377,4 @@ def exp2_neg_unclamped_f32(y: np.float32) -> np.float32:  # pragma: no cover - c
     n = np.rint(y)
     x = n - y
     p = _QN0 + x * (_QN1 + x * (_QN2 + x * (_QN3 + x * (_QN4 + x * _QN5))))
-    return _bits_f32(_f32_bits(p) - (_f32_bits(n + _MAGIC_F32) << 23))
+    return _bits_f32(_f32_bits(p) - (_f32_bits(n + _MAGIC_F32) << 23))  # type: ignore[call-arg]  # numba's stub counts typingctx

@@ -68,7 +68,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any, Literal, NamedTuple
+from typing import Any, Literal, NamedTuple, cast
 
 import numba as nb
 import numpy as np
@@ -90,7 +90,7 @@ KinematicsFn = Callable[[FloatArray, FloatArray], FloatArray]
 RhsFn = Callable[..., Any]
 
 _F64 = np.dtype(np.float64)
-_EMPTY = np.zeros(0)
+_EMPTY: FloatArray = np.zeros(0)
 _EMPTY.flags.writeable = False
 
 # ---------------------------------------------------------------------------------------------
@@ -917,7 +917,8 @@ class HollowayIntegrator(_Integrator):
             jac[:, i] = (call(t, q, v, z, e)[0] - g0) / h
         system = np.eye(n) - jac
         try:
-            inv = np.linalg.inv(system)
+            # the inverse of a float64 matrix is float64 (numpy's stub says floating)
+            inv: FloatArray | None = cast(FloatArray, np.linalg.inv(system))
         except np.linalg.LinAlgError:
             inv = None
         if inv is None or not np.all(np.isfinite(inv)):
@@ -976,11 +977,11 @@ class HollowayIntegrator(_Integrator):
         dt = self._dt
         if self._k < self.n_startup_steps:
             evaluate = self._implicit_evaluator(rhs, nv, nz, aux)
-            q_new, v_new, z_new, d0, a0, g0 = _rk4_core(t, q, v, zz, dt, evaluate, kin)
+            q_new, v_new, z_rk4, d0, a0, g0 = _rk4_core(t, q, v, zz, dt, evaluate, kin)
             self._push_startup(v, a0, d0, g0)
             self._k += 1
             self._t_next = t + dt
-            return q_new, v_new, (z_new if aux else None)
+            return q_new, v_new, (z_rk4 if aux else None)
 
         first = self._k == 0  # only with startup="constant"
         if first:
@@ -1021,7 +1022,7 @@ class HollowayIntegrator(_Integrator):
             _taylor3_update(q, qd, self._qd1, self._qd2, self._qdd1, self._qdd2, dt, q_new)
             self._qd1, self._qd2 = self._qd2, self._qd1
             self._qdd1, self._qdd2 = self._qdd2, self._qdd1
-        z_new = None
+        z_new: FloatArray | None = None
         if aux:
             if first:
                 self._zd1[:] = zd
@@ -1148,7 +1149,7 @@ def integrate(
     v = _state(np.array(v0, dtype=np.float64), "v0")
     z = None if z0 is None else _state(np.array(z0, dtype=np.float64), "z0")
     dt = integrator.dt
-    times = float(t0) + dt * np.arange(n_steps + 1)
+    times = float(t0) + dt * np.arange(n_steps + 1, dtype=np.float64)
     qs = np.empty((n_steps + 1, q.size))
     vs = np.empty((n_steps + 1, v.size))
     zs = None if z is None else np.empty((n_steps + 1, z.size))

@@ -161,17 +161,18 @@ class RegularWave:
             raise ValueError(f"period must be > 0 [s]; got {self.period!r}")
         if length is not None and length <= 0.0:
             raise ValueError(f"wavelength must be > 0 [m]; got {self.wavelength!r}")
-        from_period = None if period is None else self.g * period**2 / (2.0 * math.pi)
         if period is not None and length is not None:
+            from_period = self.g * period**2 / (2.0 * math.pi)
             if not math.isclose(length, from_period, rel_tol=1e-9):
                 raise ValueError(
                     f"period {period} s and wavelength {length} m disagree with deep-water "
                     f"dispersion (λ = gT²/2π = {from_period:.6g} m); give only one"
                 )
         elif period is None:
+            assert length is not None  # one of the two was given (checked above)
             period = 2.0 * math.pi / float(wavelength_to_omega(length, self.g))
         else:
-            length = from_period
+            length = self.g * period**2 / (2.0 * math.pi)
         if height / length > MAX_STEEPNESS:
             raise ValueError(
                 f"steepness H/λ = {height / length:.4g} exceeds the breaking limit "
@@ -192,16 +193,19 @@ class RegularWave:
     @property
     def omega(self) -> float:
         """Circular frequency ω = 2π/T [rad/s]."""
+        assert self.period is not None  # set by __post_init__
         return 2.0 * math.pi / self.period
 
     @property
     def wavenumber(self) -> float:
         """Wavenumber k = 2π/λ = ω²/g [rad/m]."""
+        assert self.wavelength is not None  # set by __post_init__
         return 2.0 * math.pi / self.wavelength
 
     @property
     def steepness(self) -> float:
         """Steepness H/λ [-]."""
+        assert self.wavelength is not None  # set by __post_init__
         return self.height / self.wavelength
 
     @property

@@ -199,7 +199,15 @@ class WaveField:
     ) -> WaveField:
         """Build a field from components, with deep-water wavenumbers k_j = ω_j²/g."""
         w = np.asarray(omega, dtype=float)
-        return cls(amplitude, w, w * w / g, direction, phase, ramp_time=ramp_time, g=g)
+        return cls(
+            np.asarray(amplitude, dtype=float),
+            w,
+            w * w / g,
+            np.asarray(direction, dtype=float),
+            np.asarray(phase, dtype=float),
+            ramp_time=ramp_time,
+            g=g,
+        )
 
     @classmethod
     def calm(cls, g: float = GRAVITY) -> WaveField:
@@ -226,11 +234,11 @@ class WaveField:
         if not isinstance(wave, RegularWave):
             raise ValueError(f"wave must be a RegularWave; got {type(wave).__name__}")
         return cls(
-            [wave.amplitude],
-            [wave.omega],
-            [wave.wavenumber],
-            [wave.heading],
-            [wave.phase],
+            np.array([wave.amplitude]),
+            np.array([wave.omega]),
+            np.array([wave.wavenumber]),
+            np.array([wave.heading]),
+            np.array([wave.phase]),
             ramp_time=wave.ramp_time if ramp_time is None else ramp_time,
             g=wave.g,
         )

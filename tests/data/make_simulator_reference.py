@@ -1,7 +1,7 @@
 """Regenerate ``simulator_reference.npz``: ship trajectories frozen for the engine's tests.
 
 The stored file was written by the single-ship Python ``Simulator`` of commit 6586197, before
-that class became the one-ship view of the engine; ``tests/physics/test_engine_reference.py``
+that class became the one-ship view of the engine; ``tests/engine/test_engine_reference.py``
 checks that the engine still produces them. Rerun only on purpose (a physics change), from the
 repository root: ``python tests/data/make_simulator_reference.py``.
 """

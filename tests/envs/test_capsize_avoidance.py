@@ -6,9 +6,10 @@ actions, time limit) are parametrised in test_ship_task.py; coarse S175 mesh as 
 
 import numpy as np
 import pytest
-from _ship_env_checks import COARSE_MESH
 
 from ship_gym.envs.capsize_avoidance import CapsizeAvoidanceEnv
+
+from ._ship_env_checks import COARSE_MESH
 
 COARSE = {"hull_mesh": COARSE_MESH}
 

@@ -7,9 +7,10 @@ _ship_env_checks.py.
 
 import numpy as np
 import pytest
-from _ship_env_checks import COARSE
 
 from ship_gym.envs.course_keeping import CourseKeepingEnv
+
+from ._ship_env_checks import COARSE
 
 
 def _env(**kwargs) -> CourseKeepingEnv:

@@ -7,9 +7,10 @@ _ship_env_checks.py.
 
 import numpy as np
 import pytest
-from _ship_env_checks import COARSE, rollout, uniform_actions
 
 from ship_gym.envs.ride_control import RideControlEnv
+
+from ._ship_env_checks import COARSE, rollout, uniform_actions
 
 HEAD_SEA = {
     "wave_heading_range_deg": (180.0, 180.0),

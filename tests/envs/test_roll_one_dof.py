@@ -6,6 +6,7 @@ import hashlib
 import subprocess
 import sys
 import warnings
+from pathlib import Path
 
 import gymnasium
 import numpy as np
@@ -73,9 +74,10 @@ def test_seeded_determinism_two_instances_and_subprocess():
     b = _rollout(7, **kwargs)
     assert _digest(a) == _digest(b)
     assert _digest(_rollout(8, **kwargs)) != _digest(a)
+    repo = str(Path(__file__).resolve().parents[2])  # the fresh interpreter imports this module
     code = (
-        "import sys; sys.path.insert(0, 'tests/envs'); "
-        "from test_roll_one_dof import _rollout, _digest; "
+        f"import sys; sys.path.insert(0, {repo!r}); "
+        "from tests.envs.test_roll_one_dof import _rollout, _digest; "
         "print(_digest(_rollout(7, roll_noise_std=0.005, roll_rate_noise_std=0.002)))"
     )
     out = subprocess.run(

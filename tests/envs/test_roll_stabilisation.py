@@ -7,9 +7,10 @@ test_ship_task.py; the coarse mesh is described in _ship_env_checks.py.
 
 import numpy as np
 import pytest
-from _ship_env_checks import COARSE, rollout
 
 from ship_gym.envs.roll_stabilisation import RollStabilizationEnv
+
+from ._ship_env_checks import COARSE, rollout
 
 BEAM_SEA = {
     "wave_heading_range_deg": (90.0, 90.0),

@@ -14,16 +14,6 @@ import sys
 import gymnasium
 import numpy as np
 import pytest
-from _ship_env_checks import (
-    COARSE,
-    RESET_INFO_KEYS,
-    SHIP_ENVS,
-    assert_bad_actions_raise,
-    assert_checkers_pass_without_warnings,
-    reward_terms,
-    rollout,
-    uniform_actions,
-)
 
 from ship_gym.engine.batch import build_batch_simulator
 from ship_gym.engine.ship import ShipSetup, wave_field_for
@@ -34,6 +24,17 @@ from ship_gym.envs.registration import ENTRIES
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.hull import load_hull, righting_arm
 from ship_gym.waves.sea_state import IrregularSea
+
+from ._ship_env_checks import (
+    COARSE,
+    RESET_INFO_KEYS,
+    SHIP_ENVS,
+    assert_bad_actions_raise,
+    assert_checkers_pass_without_warnings,
+    reward_terms,
+    rollout,
+    uniform_actions,
+)
 
 MESH = {"n_sections": 24, "n_below": 6, "n_above": 3, "n_deck": 2}
 

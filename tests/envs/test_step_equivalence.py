@@ -14,7 +14,6 @@ import math
 
 import numpy as np
 import pytest
-from _ship_env_checks import COARSE, COARSE_MESH
 
 from ship_gym.comfort.metrics import PassengerComfort
 from ship_gym.envs.base import TaskEnv, TaskStep, TaskVectorEnv, validate_actions
@@ -23,6 +22,8 @@ from ship_gym.envs.course_keeping import CourseKeepingTask
 from ship_gym.envs.ride_control import RideControlTask
 from ship_gym.envs.roll_stabilisation import RollStabilizationTask
 from ship_gym.envs.ship_task import _TWO_PI, StepStatistics, _finish_observations_kernel, clip_into
+
+from ._ship_env_checks import COARSE, COARSE_MESH
 
 
 # =============================================================================================

@@ -22,7 +22,7 @@ first reset and 5 steps (numba compilation, caches) are not timed. Times are wal
 
 Usage::
 
-    python scripts/bench_envs.py --ids ship_gym/RollOneDOF-v0 --steps 2000 --n 1 16 64
+    python benchmarks/bench_envs.py --ids ship_gym/RollOneDOF-v0 --steps 2000 --n 1 16 64
 """
 
 from __future__ import annotations

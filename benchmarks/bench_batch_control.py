@@ -24,7 +24,7 @@ numba, OpenMP and BLAS threads are set to 1 before numpy is imported.
 
 Usage::
 
-    python scripts/bench_batch_control.py [--json PATH] [--quick]
+    python benchmarks/bench_batch_control.py [--json PATH] [--quick]
 """
 
 from __future__ import annotations

@@ -43,7 +43,7 @@ RTOL = 1e-14  # see the module docstring
 
 
 def _example() -> ResistanceParticulars:
-    """Holtrop & Mennen's (1982) worked example (as in tests/physics/test_propulsion.py)."""
+    """Holtrop & Mennen's (1982) worked example (as in tests/forces/test_propulsion.py)."""
     return ResistanceParticulars(
         length=205.0,
         beam=32.0,

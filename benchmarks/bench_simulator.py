@@ -50,7 +50,7 @@ alike; the load average is printed with them.
 
 Usage::
 
-    python scripts/bench_simulator.py [--json PATH] [--quick]
+    python benchmarks/bench_simulator.py [--json PATH] [--quick]
 """
 
 from __future__ import annotations

@@ -261,7 +261,7 @@ def test_speed_drops_at_fixed_shaft_speed_by_the_expected_amount(s175, particula
     sea = IrregularSea(hs=4.5, tp=11.0, heading=np.pi, n_components=80)
     field = WaveField.from_sea_state(sea, np.random.default_rng(5))
     raw = AddedResistance(particulars, field, speed_tolerance=0.0)
-    mass = s175.mass.mass * 1.05  # A11 ≈ 5 % of the mass (tests/physics/test_propulsion.py)
+    mass = s175.mass.mass * 1.05  # A11 ≈ 5 % of the mass (tests/forces/test_propulsion.py)
 
     def net(u, with_raw=True):
         x = prop._net_force(n, u, res)

@@ -20,7 +20,7 @@ Times are robust to other load on the machine: each is the smallest of several r
 
 Usage::
 
-    python scripts/bench_froude_krylov.py [--json PATH] [--components 50] [--parallel] [--torch]
+    python benchmarks/bench_froude_krylov.py [--json PATH] [--components 50] [--parallel] [--torch]
 """
 
 from __future__ import annotations
