@@ -36,6 +36,10 @@ remaining 400 s, for three inputs u:
 The identified ωₙ = √c_u1 is compared with the linear natural frequency of the hydro database
 (``ship_gym.hydro.rao.natural_frequency``: ω²(I44 + A44(ω)) = C44).
 
+The computations are :mod:`ship_gym.analysis.mccue` (:func:`~ship_gym.analysis.mccue.part1`,
+:func:`~ship_gym.analysis.mccue.sixdof_study`); this script parses the arguments, prints the
+tables, draws the figures and writes the CSV and JSON files.
+
 Usage::
 
     python scripts/reproduce_mccue.py [--part mccue|sixdof|all] [--out-dir docs/mccue]
@@ -46,7 +50,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 import time
 from pathlib import Path
@@ -55,175 +58,16 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ship_gym.analysis import identification as ident
+from ship_gym.analysis import mccue
+from ship_gym.analysis.mccue import SIX_HS, SIX_TP, SIX_TRAIN, TRAIN_END, ic_label
 from ship_gym.io_utils import atomic_write, atomic_write_text
-from ship_gym.roll.equation import RollEquation
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-F = 0.0195  # forcing amplitude of the data [rad/s²]
-OMEGA_E = 0.85 * 0.62  # encounter frequency [rad/s]
-DT = 0.1  # sample interval and RK4 step [s]
-DURATION = 1000.0  # [s]
-TRAIN_END = 500.0  # [s]
-INITIAL_CONDITIONS = ((0.0, 0.0), (0.4, 0.0), (-0.4, -0.35))
-PIECES = (1, 2, 5, 10, 20, 50, 100, 250)
 
-# part 2
-SIX_HS, SIX_TP, SIX_SEED = 4.0, 10.0, 1
-SIX_DT = 0.05
-SIX_SETTLE, SIX_DURATION, SIX_TRAIN = 100.0, 1000.0, 600.0
-SIX_PIECES = (50, 100, 200)
-
-
-def _ic_label(ic: tuple[float, float]) -> str:
-    return f"⟨{ic[0]:g}, {ic[1]:g}⟩"
-
-
-def _paper_model(ic: tuple[float, float]) -> ident.McCueCampbellModel:
-    b1, b3, c1, c3, f = ident.MCCUE_CAMPBELL_FITS[ic]
-    return ident.McCueCampbellModel(b1, b3, c1, c3, f, OMEGA_E)
-
-
-def _window(w: ident.WindowError | None) -> dict | None:
-    return None if w is None else vars(w)
-
-
-def _steady_amplitude(t: np.ndarray, roll: np.ndarray, t_from: float = 500.0) -> float:
-    """Largest |roll| after t_from [rad] (the steady-state amplitude of figs. 5–6)."""
-    return float(np.max(np.abs(roll[t >= t_from])))
-
-
-# ---------------------------------------------------------------------------------- part 1
-def fit_case(ic: tuple[float, float], pieces: tuple[int, ...]) -> dict:
-    """Data from eq. 1, fits of eq. 2 for each N, the selected fit, the paper's coefficients."""
-    truth = RollEquation.edith_terkol(F, OMEGA_E)
-    traj = truth.integrate(ic[0], ic[1], DURATION, DT)
-    record = ident.RollRecord(traj.time, traj.phi, traj.phidot)
-    n_train = record.index_at(TRAIN_END) + 1
-    scans = []
-    for n in pieces:
-        res = ident.identify_roll_equation(
-            record, omega=OMEGA_E, n_pieces=n, train_end=TRAIN_END, max_evaluations=3000
-        )
-        pred = ident.predict_roll(res.model, record, train_end=TRAIN_END)
-        fit_nrmse = pred.fit_window.nrmse_roll
-        scans.append({"result": res, "prediction": pred, "fit_nrmse": fit_nrmse})
-        print(
-            f"  {_ic_label(ic)} N = {n:4d}: b_u1 {res.model.b_u1:+.4f} b_u3 {res.model.b_u3:+.4f}"
-            f" c_u1 {res.model.c_u1:.4f} c_u3 {res.model.c_u3:+.4f} F_u "
-            f"{res.model.forcing_amplitude:.4f} | eq.3 {res.objective:.3g} | free-run NRMSE "
-            f"fit {fit_nrmse:.3f} pred {pred.prediction_window.nrmse_roll:.3f} "
-            f"[{res.n_evaluations} ev, {res.cpu_time:.1f} s CPU]",
-            flush=True,
-        )
-    ok = [s for s in scans if np.isfinite(s["fit_nrmse"]) and not s["prediction"].diverged]
-    best = min(ok, key=lambda s: s["fit_nrmse"])
-    paper = _paper_model(ic)
-    paper_pred = ident.predict_roll(paper, record, train_end=TRAIN_END)
-    n_best = best["result"].n_pieces
-    return {
-        "ic": ic,
-        "truth": truth,
-        "record": record,
-        "n_train": n_train,
-        "scans": scans,
-        "best": best,
-        "paper": paper,
-        "paper_prediction": paper_pred,
-        "paper_objective": ident.piecewise_error(paper, record, n_best, train_end=TRAIN_END),
-        "data_range": (
-            float(np.max(np.abs(record.roll[:n_train]))),
-            float(np.max(np.abs(record.roll_rate[:n_train]))),
-        ),
-    }
-
-
-def cross_predictions(cases: list[dict]) -> list[dict]:
-    """Each fitted model (ours and the paper's) run freely from every initial condition."""
-    rows = []
-    for source in cases:
-        for target in cases:
-            rec = target["record"]
-            true_amp = _steady_amplitude(rec.t, rec.roll)
-            row = {
-                "fitted_on": list(source["ic"]),
-                "run_from": list(target["ic"]),
-                "true_steady_amplitude_deg": math.degrees(true_amp),
-            }
-            for key, model in (
-                ("ours", source["best"]["result"].model),
-                ("paper", source["paper"]),
-            ):
-                pred = ident.predict_roll(model, rec, train_end=TRAIN_END)
-                amp = _steady_amplitude(pred.t, pred.roll)
-                row[f"{key}_steady_amplitude_deg"] = math.degrees(amp)
-                row[f"{key}_nrmse_500_1000"] = pred.prediction_window.nrmse_roll
-                row[f"{key}_diverged"] = pred.diverged
-            rows.append(row)
-    return rows
-
-
-def safe_basins(case: dict, n_grid: int, cycles: int) -> dict:
-    """Safe basin (no capsize within ``cycles`` forcing periods from t = 0) of the truth, of
-    our fitted model and of the paper's, on a grid of initial ⟨φ₀, φ̇₀⟩
-    (:func:`ship_gym.analysis.safe_basin.safe_basin`).
-
-    Capsize: |φ| beyond the truth's angle of vanishing stability (0.86 rad) for all three
-    models (a fitted cubic with c_u3 < 0 vanishes near it; one with c_u3 > 0 never does).
-    """
-    from ship_gym.analysis.safe_basin import safe_basin
-
-    truth: RollEquation = case["truth"]
-    limit = truth.vanishing_angle()
-    duration = DT * round(cycles * 2 * math.pi / OMEGA_E / DT)
-    out: dict = {"limit": limit, "duration": duration}
-    for key, eq in (
-        ("truth", truth),
-        ("ours", case["best"]["result"].model.roll_equation()),
-        ("paper", case["paper"].roll_equation()),
-    ):
-        basin = safe_basin(
-            eq, roll_range=(-1.0, 1.0), roll_rate_range=(-0.6, 0.6), n_roll=n_grid,
-            n_rate=n_grid, duration=duration, dt=DT, capsize_angle=limit, model=key,
-        )  # fmt: skip
-        out[key] = basin.safe
-        out["phi"], out["phidot"] = basin.roll, basin.roll_rate
-    for key in ("ours", "paper"):
-        out[f"{key}_agreement"] = float(np.mean(out[key] == out["truth"]))
-        # intersection over union of the safe sets: the agreement on the basin itself
-        union = np.sum(out[key] | out["truth"])
-        out[f"{key}_safe_iou"] = float(np.sum(out[key] & out["truth"]) / union)
-    out["truth_safe_fraction"] = float(np.mean(out["truth"]))
-    return out
-
-
-def coefficient_rows(cases: list[dict]) -> list[dict]:
-    rows = []
-    for case in cases:
-        res = case["best"]["result"]
-        for source, model, pred, objective in (
-            ("ours", res.model, case["best"]["prediction"], res.objective),
-            ("paper", case["paper"], case["paper_prediction"], case["paper_objective"]),
-        ):
-            rows.append(
-                {
-                    "initial_condition": _ic_label(case["ic"]),
-                    "source": source,
-                    "n_pieces": res.n_pieces,
-                    "b_u1": model.b_u1,
-                    "b_u3": model.b_u3,
-                    "c_u1": model.c_u1,
-                    "c_u3": model.c_u3,
-                    "F_u": model.forcing_amplitude,
-                    "eq3_error": objective,
-                    "nrmse_fit_0_500": pred.fit_window.nrmse_roll,
-                    "nrmse_pred_500_1000": pred.prediction_window.nrmse_roll,
-                    "corr_pred_500_1000": pred.prediction_window.correlation_roll,
-                    "max_err_pred_deg": math.degrees(pred.prediction_window.max_error_roll),
-                }
-            )
-    return rows
+def _log(line: str) -> None:
+    print(line, flush=True)
 
 
 def write_csv(path: Path, rows: list[dict]) -> None:
@@ -241,7 +85,7 @@ def write_csv(path: Path, rows: list[dict]) -> None:
     atomic_write_text(path, "\n".join(lines) + "\n")
 
 
-def plot_part1(cases: list[dict], basin: dict, out_dir: Path) -> list[Path]:
+def plot_part1(cases: tuple[mccue.FitCase, ...], basin: dict, out_dir: Path) -> list[Path]:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -251,15 +95,15 @@ def plot_part1(cases: list[dict], basin: dict, out_dir: Path) -> list[Path]:
     # time histories (figs. 1, 3, 6)
     fig, axes = plt.subplots(len(cases), 1, figsize=(11, 2.6 * len(cases)), squeeze=False)
     for ax, case in zip(axes[:, 0], cases, strict=True):
-        best = case["best"]
+        best = case.best
         ident.plot_time_history(
             ax,
-            case["record"],
-            best["prediction"],
-            title=f"{_ic_label(case['ic'])}: eq. 2 fitted on 0–500 s (N = "
-            f"{best['result'].n_pieces}), free run from t = 0",
+            case.record,
+            best.prediction,
+            title=f"{ic_label(case.ic)}: eq. 2 fitted on 0–500 s (N = "
+            f"{best.result.n_pieces}), free run from t = 0",
         )
-        pp = case["paper_prediction"]
+        pp = case.paper_prediction
         ax.plot(pp.t, np.degrees(pp.roll), color="C2", lw=0.8, ls=":", label="paper's coeffs")
         ax.legend(loc="upper right", fontsize=7, ncol=4)
     fig.tight_layout()
@@ -270,18 +114,18 @@ def plot_part1(cases: list[dict], basin: dict, out_dir: Path) -> list[Path]:
     fig, axes = plt.subplots(len(cases), 2, figsize=(10, 3.0 * len(cases)), squeeze=False)
     for row, case in zip(axes, cases, strict=True):
         ident.plot_curves(
-            row, case["best"]["result"].model, case["record"], truth=case["truth"],
+            row, case.best.result.model, case.record, truth=case.truth,
             train_end=TRAIN_END, phi_max=1.0, phidot_max=0.6,
         )  # fmt: skip
         phi = np.linspace(-1.0, 1.0, 401)
         phidot = np.linspace(-0.6, 0.6, 401)
-        row[0].plot(phi, case["paper"].restoring(phi), color="C2", lw=0.9, ls=":", label="paper")
-        row[1].plot(phidot, case["paper"].damping(phidot), color="C2", lw=0.9, ls=":",
+        row[0].plot(phi, case.paper.restoring(phi), color="C2", lw=0.9, ls=":", label="paper")
+        row[1].plot(phidot, case.paper.damping(phidot), color="C2", lw=0.9, ls=":",
                     label="paper")  # fmt: skip
         row[0].set_ylim(-0.6, 0.6)
         row[1].set_ylim(-0.03, 0.03)
         for ax in row:
-            ax.set_title(_ic_label(case["ic"]), fontsize=9)
+            ax.set_title(ic_label(case.ic), fontsize=9)
             ax.legend(fontsize=7)
     fig.tight_layout()
     paths.append(_save(fig, out_dir / "curves.png"))
@@ -326,10 +170,8 @@ def _save(fig: Figure, path: Path) -> Path:
 def part1(args: argparse.Namespace, out_dir: Path) -> dict:
     cpu0 = time.process_time()
     pieces = tuple(int(p) for p in args.pieces.split(","))
-    cases = []
-    for ic in INITIAL_CONDITIONS:
-        cases.append(fit_case(ic, pieces))
-    rows = coefficient_rows(cases)
+    study = mccue.part1(pieces, args.basin_grid, args.basin_cycles, log=_log)
+    rows = study.table
     write_csv(out_dir / "coefficients.csv", rows)
     print(f"wrote {out_dir / 'coefficients.csv'}")
     print("\ncoefficients (ours: N chosen by the free-run fit over 0-500 s) vs McCue & Campbell")
@@ -344,7 +186,7 @@ def part1(args: argparse.Namespace, out_dir: Path) -> dict:
             f"{r['eq3_error']:7.3f} {r['nrmse_fit_0_500']:9.3f} {r['nrmse_pred_500_1000']:10.3f} "
             f"{r['corr_pred_500_1000']:9.3f}"
         )
-    cross = cross_predictions(cases)
+    cross = study.cross
     print("\ncross-predictions (steady amplitude over 500-1000 s, deg)")
     for r in cross:
         print(
@@ -352,7 +194,7 @@ def part1(args: argparse.Namespace, out_dir: Path) -> dict:
             f"{r['true_steady_amplitude_deg']:.2f}, ours {r['ours_steady_amplitude_deg']:.2f}, "
             f"paper {r['paper_steady_amplitude_deg']:.2f}"
         )
-    basin = safe_basins(cases[2], args.basin_grid, args.basin_cycles)
+    basin = study.basin
     print(
         f"\nsafe basin ({args.basin_grid}² cells, {basin['duration']:.0f} s): truth safe "
         f"{100 * basin['truth_safe_fraction']:.1f} %; agreement with the truth: ours "
@@ -360,194 +202,21 @@ def part1(args: argparse.Namespace, out_dir: Path) -> dict:
         f"{100 * basin['paper_agreement']:.1f} %; safe-set intersection/union: ours "
         f"{basin['ours_safe_iou']:.3f}, paper's {basin['paper_safe_iou']:.3f}"
     )
-    figures = plot_part1(cases, basin, out_dir)
+    figures = plot_part1(study.cases, basin, out_dir)
     return {
-        "conditions": {
-            "forcing_amplitude": F,
-            "omega_e": OMEGA_E,
-            "dt": DT,
-            "duration": DURATION,
-            "train_end": TRAIN_END,
-            "pieces_scanned": list(pieces),
-            "selection": "N with the smallest free-run roll NRMSE over the training window",
-        },
-        "cases": [
-            {
-                "initial_condition": list(c["ic"]),
-                "data_range_roll_rad": c["data_range"][0],
-                "data_range_rate_rad_s": c["data_range"][1],
-                "selected_n_pieces": c["best"]["result"].n_pieces,
-                "scan": [
-                    {
-                        "n_pieces": s["result"].n_pieces,
-                        "identification": s["result"].as_dict(),
-                        "prediction": s["prediction"].as_dict(),
-                    }
-                    for s in c["scans"]
-                ],
-                "paper_coefficients": c["paper"].as_dict(),
-                "paper_prediction": c["paper_prediction"].as_dict(),
-                "paper_eq3_error_at_selected_n": c["paper_objective"],
-            }
-            for c in cases
-        ],
-        "table": rows,
-        "cross_predictions": cross,
-        "safe_basin": {
-            "grid": args.basin_grid,
-            **{k: basin[k] for k in ("limit", "duration", "truth_safe_fraction")},
-            **{k: basin[k] for k in ("ours_agreement", "paper_agreement")},
-            **{k: basin[k] for k in ("ours_safe_iou", "paper_safe_iou")},
-        },
+        **study.as_dict(),
         "figures": [str(p) for p in figures],
         "cpu_time_s": time.process_time() - cpu0,
     }
 
 
 # ---------------------------------------------------------------------------------- part 2
-SIX_INPUTS = {
-    "excitation": "roll excitation moment m(t), component-wise from the wave field [N·m]",
-    "excitation_fft": "roll excitation moment from the elevation record, FFT-filtered by X₄ [N·m]",
-    "elevation": "incident-wave elevation η(t) at the ship's origin [m]",
-}
-SIX_EDGE = 50.0  # [s] ends of the record left out when comparing the FFT path with the exact one
-
-
-def simulate_s175(progress: bool) -> tuple[ident.RollRecord, dict, object, np.ndarray]:
-    """Beam-sea roll record of the 6-DOF S175 with the wave elevation at the origin; also the
-    simulator's wave field and the record's times on the wave field's clock [s] (the meta data
-    hold the ship's fixed horizontal position [m] and heading [rad])."""
-    from ship_gym.engine.ship import ShipSetup, build_simulator
-    from ship_gym.waves.sea_state import IrregularSea
-
-    setup = ShipSetup(
-        integrator="holloway", dt=SIX_DT, free_dofs=(False, False, True, True, True, False)
-    )
-    sea = IrregularSea(hs=SIX_HS, tp=SIX_TP, n_components=100)
-    sim = build_simulator(setup, sea, wave_heading=math.pi / 2, rng=np.random.default_rng(SIX_SEED))
-    cpu0 = time.process_time()
-    sim.run(SIX_SETTLE, record_every=2, progress=False)
-    res = sim.run(SIX_DURATION, record_every=2, progress=progress)
-    cpu = time.process_time() - cpu0
-    phi, theta = res.eta[:, 3], res.eta[:, 4]
-    p, q, r = res.nu[:, 3], res.nu[:, 4], res.nu[:, 5]
-    phidot = p + (q * np.sin(phi) + r * np.cos(phi)) * np.tan(theta)  # Euler-angle rate
-    t = res.t - res.t[0]
-    record = ident.RollRecord(t, phi, phidot, res.elevation, "wave_elevation")
-    # surge/sway/yaw velocities are held at 0, yet the earth position creeps (≈ 1.4 m over the
-    # record, body-to-earth kinematics with roll and pitch): the mean position is used for m(t)
-    # (phase error k·0.7 m ≤ 0.03 rad at the roll-resonant ω ≤ 0.6 rad/s)
-    held = res.eta[:, [0, 1, 5]]
-    drift = float(np.max(np.ptp(held[:, :2], axis=0)))
-    if drift > 5.0 or np.ptp(held[:, 2]) > 1e-6:
-        raise RuntimeError(f"surge, sway and yaw were expected to be held (drift {drift:.3g} m)")
-    meta = {
-        "simulation_cpu_s": cpu,
-        "setup": repr(setup),
-        "position": (float(held[:, 0].mean()), float(held[:, 1].mean())),
-        "position_drift_m": drift,
-        "ship_heading": float(held[0, 2]),
-    }
-    return record, meta, sim.wave_field, res.t
-
-
-def _fit_input(record: ident.RollRecord, name: str) -> dict:
-    """Fits of eq. 2 with K u(t − τ) for each N of SIX_PIECES; the N with the best free-run
-    reproduction of the training window is selected."""
-    scans = []
-    for n in SIX_PIECES:
-        res = ident.identify_roll_equation(
-            record, omega=None, n_pieces=n, train_end=SIX_TRAIN, fit_input_lag=True,
-            max_evaluations=2000, restarts=0,
-        )  # fmt: skip
-        pred = ident.predict_roll(res.model, record, train_end=SIX_TRAIN)
-        pred_end = ident.predict_roll(res.model, record, train_end=SIX_TRAIN, start_time=SIX_TRAIN)
-        m = res.model
-        print(
-            f"  [{name}] N = {n:4d}: b_u1 {m.b_u1:+.4f} b_u3 {m.b_u3:+.3f} c_u1 {m.c_u1:.4f} "
-            f"(ω_n {m.natural_frequency:.4f}) c_u3 {m.c_u3:+.3f} K {m.input_gain:+.4g} τ "
-            f"{m.input_lag:+.2f} s | free run NRMSE fit {pred.fit_window.nrmse_roll:.3f}, "
-            f"held-out {pred.prediction_window.nrmse_roll:.3f} (corr "
-            f"{pred.prediction_window.correlation_roll:.3f}) [{res.cpu_time:.0f} s CPU]",
-            flush=True,
-        )
-        scans.append({"result": res, "prediction": pred, "prediction_from_train_end": pred_end})
-    ok = [s for s in scans if not s["prediction"].diverged] or scans
-    best = min(ok, key=lambda s: s["prediction"].fit_window.nrmse_roll)
-    return {"record": record, "scans": scans, "best": best}
-
-
 def part2(args: argparse.Namespace, out_dir: Path) -> dict:
-    from ship_gym.hull import load_hull
-    from ship_gym.hydro import as_arrays, load_database
-    from ship_gym.hydro.rao import natural_frequency
-
     cpu0 = time.process_time()
-    record, meta, field, t_wave = simulate_s175(progress=not args.no_progress)
-    ident.write_roll_csv(out_dir / "s175_beam_roll.csv", record)
-    db = load_database("s175")
-    omega_lin = natural_frequency(db, "Roll")
-    arrays = as_arrays(db)
-    i44 = float(load_hull("s175").mass.rigid_body_matrix()[3, 3])
-    a44 = float(np.interp(omega_lin, arrays.omega, arrays.added_mass[:, 3, 3]))
-    gain_phys = 1.0 / (i44 + a44)
-    print(
-        f"S175 beam seas Hs {SIX_HS} m Tp {SIX_TP} s: roll std "
-        f"{math.degrees(record.roll.std()):.2f}°, max "
-        f"{math.degrees(np.abs(record.roll).max()):.2f}°, elevation std "
-        f"{record.excitation.std():.2f} m [{meta['simulation_cpu_s']:.0f} s CPU]"
-    )
-    # the inputs: exact (component-wise) and FFT-filtered roll excitation, and the elevation
-    m_exact = ident.roll_excitation_moment(
-        field, db, t_wave, ship_heading=meta["ship_heading"], position=meta["position"]
-    )
-    m_fft = ident.roll_excitation_from_elevation(record.excitation, record.dt, db, math.pi / 2)
-    inner = (record.t >= SIX_EDGE) & (record.t <= record.t[-1] - SIX_EDGE)
-    fft_check = {
-        "nrmse_whole_record": float(np.std(m_fft - m_exact) / np.std(m_exact)),
-        "nrmse_interior": float(np.std((m_fft - m_exact)[inner]) / np.std(m_exact[inner])),
-        "interior": [SIX_EDGE, float(record.t[-1] - SIX_EDGE)],
-        "correlation_whole_record": float(np.corrcoef(m_fft, m_exact)[0, 1]),
-    }
-    print(
-        f"roll excitation: std {m_exact.std() / 1e6:.2f} MN·m; FFT path vs component-wise: "
-        f"NRMSE {fft_check['nrmse_whole_record']:.4f} (whole record), "
-        f"{fft_check['nrmse_interior']:.4f} ({SIX_EDGE:.0f} s ends left out); physical gain "
-        f"1/(I44 + A44(ω_n)) = {gain_phys:.4g} rad/s² per N·m (I44 {i44:.4g}, A44 {a44:.4g} "
-        "kg·m²)"
-    )
-    records = {
-        "excitation": ident.RollRecord(
-            record.t, record.roll, record.roll_rate, m_exact, "roll_excitation_moment"
-        ),
-        "excitation_fft": ident.RollRecord(
-            record.t, record.roll, record.roll_rate, m_fft, "roll_excitation_moment_fft"
-        ),
-        "elevation": record,
-    }
-    fits = {name: _fit_input(rec, name) for name, rec in records.items()}
-    rows = []
-    for name, fit in fits.items():
-        m = fit["best"]["result"].model
-        pw = fit["best"]["prediction"].prediction_window
-        pe = fit["best"]["prediction_from_train_end"].prediction_window
-        rows.append(
-            {
-                "input": name,
-                "n_pieces": fit["best"]["result"].n_pieces,
-                "omega_n": m.natural_frequency,
-                "gain": m.input_gain,
-                "gain_over_physical": m.input_gain / gain_phys if name != "elevation" else None,
-                "lag_s": m.input_lag,
-                "nrmse_heldout": pw.nrmse_roll,
-                "corr_heldout": pw.correlation_roll,
-                "nrmse_heldout_from_600": pe.nrmse_roll,
-                "corr_heldout_from_600": pe.correlation_roll,
-                "std_roll_model_deg": math.degrees(pw.std_roll_model),
-            }
-        )
-    print(f"\nlinear ω_n (database) {omega_lin:.4f} rad/s; held-out window 600–1000 s")
-    for r in rows:
+    study = mccue.sixdof_study(progress=not args.no_progress, log=_log)
+    ident.write_roll_csv(out_dir / "s175_beam_roll.csv", study.record)
+    print(f"\nlinear ω_n (database) {study.omega_lin:.4f} rad/s; held-out window 600–1000 s")
+    for r in study.table:
         ratio = "" if r["gain_over_physical"] is None else f" ({r['gain_over_physical']:.3f} phys)"
         print(
             f"{r['input']:15s} N {r['n_pieces']:4d}: √c_u1 {r['omega_n']:.4f}, K "
@@ -555,55 +224,16 @@ def part2(args: argparse.Namespace, out_dir: Path) -> dict:
             f"{r['nrmse_heldout']:.3f}, corr {r['corr_heldout']:.3f}; from 600 s: NRMSE "
             f"{r['nrmse_heldout_from_600']:.3f}, corr {r['corr_heldout_from_600']:.3f}"
         )
-    _plot_part2(fits, m_exact, m_fft, omega_lin, out_dir)
-    main_fit = fits["excitation"]["best"]
-    return {
-        "conditions": {
-            "hull": "s175",
-            "sea": f"JONSWAP Hs {SIX_HS} m Tp {SIX_TP} s, long-crested, beam (β = 90°), seed "
-            f"{SIX_SEED}, 100 components",
-            "speed": 0.0,
-            "free_dofs": "heave, roll, pitch (surge, sway, yaw held)",
-            "integrator": "holloway",
-            "dt": SIX_DT,
-            "record_dt": record.dt,
-            "settle": SIX_SETTLE,
-            "duration": SIX_DURATION,
-            "train_end": SIX_TRAIN,
-            "forcing_model": "K * u(t - lag), K and lag fitted, for each input u",
-            "inputs": SIX_INPUTS,
-            "selection": "N with the smallest free-run roll NRMSE over the training window",
-        },
-        "roll_std_deg": math.degrees(float(record.roll.std())),
-        "roll_max_deg": math.degrees(float(np.abs(record.roll).max())),
-        "roll_excitation_std_Nm": float(m_exact.std()),
-        "fft_vs_componentwise_excitation": fft_check,
-        "omega_natural_linear": omega_lin,
-        "physical_gain": {"I44": i44, "A44_at_omega_n": a44, "gain": gain_phys},
-        "table": rows,
-        "inputs": {
-            name: {
-                "scan": [
-                    {
-                        "identification": s["result"].as_dict(),
-                        "prediction_from_start": s["prediction"].as_dict(),
-                        "prediction_from_train_end": s["prediction_from_train_end"].as_dict(),
-                    }
-                    for s in fit["scans"]
-                ],
-                "selected_n_pieces": fit["best"]["result"].n_pieces,
-            }
-            for name, fit in fits.items()
-        },
-        "selected_n_pieces": main_fit["result"].n_pieces,
-        "omega_natural_identified": main_fit["result"].model.natural_frequency,
-        "meta": meta,
-        "cpu_time_s": time.process_time() - cpu0,
-    }
+    _plot_part2(study.fits, study.m_exact, study.m_fft, study.omega_lin, out_dir)
+    return {**study.as_dict(), "cpu_time_s": time.process_time() - cpu0}
 
 
 def _plot_part2(
-    fits: dict, m_exact: np.ndarray, m_fft: np.ndarray, omega_lin: float, out_dir: Path
+    fits: dict[str, mccue.InputFit],
+    m_exact: np.ndarray,
+    m_fft: np.ndarray,
+    omega_lin: float,
+    out_dir: Path,
 ) -> None:
     import matplotlib
 
@@ -611,8 +241,8 @@ def _plot_part2(
     import matplotlib.pyplot as plt
 
     main, old = fits["excitation"], fits["elevation"]
-    record = main["record"]
-    res, pred = main["best"]["result"], main["best"]["prediction"]
+    record = main.record
+    res, pred = main.best.result, main.best.prediction
     fig = plt.figure(figsize=(12, 10))
     grid = fig.add_gridspec(4, 2)
     ax = fig.add_subplot(grid[0, :])
@@ -632,7 +262,7 @@ def _plot_part2(
         (old, "C0", "input η(t)"),
     )
     for fit, color, label in curves:
-        p = fit["best"]["prediction"]
+        p = fit.best.prediction
         k = p.t >= SIX_TRAIN
         w = p.prediction_window
         label = f"{label}: NRMSE {w.nrmse_roll:.2f}, corr {w.correlation_roll:.2f}"
@@ -670,7 +300,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--part", default="all", choices=("mccue", "sixdof", "all"))
     parser.add_argument("--out-dir", default="docs/mccue")
     parser.add_argument("--json", default="docs/mccue/results.json")
-    parser.add_argument("--pieces", default=",".join(map(str, PIECES)), help="N values scanned")
+    parser.add_argument(
+        "--pieces", default=",".join(map(str, mccue.PIECES)), help="N values scanned"
+    )
     parser.add_argument("--basin-grid", type=int, default=121, help="safe-basin cells per axis")
     parser.add_argument("--basin-cycles", type=int, default=16, help="forcing periods simulated")
     parser.add_argument("--no-progress", action="store_true")

@@ -7,8 +7,67 @@ import math
 import os
 import stat
 import tempfile
+import time
 from collections.abc import Callable
 from pathlib import Path
+
+#: When this module was imported: temporary files older than this were not made by this process.
+_PROCESS_START = time.time()
+#: A temporary file without a pid in its name (older versions) is removed once this old [s].
+_LEGACY_TEMP_AGE_S = 3600.0
+
+
+def _pid_alive(pid: int) -> bool:
+    if pid <= 0:
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # someone else's live process
+        return True
+    except OSError:
+        return False
+    return True
+
+
+def clean_stale_temps(path: str | Path) -> list[Path]:
+    """Remove the leftover temporary files of :func:`atomic_write` for ``path``.
+
+    A write killed by SIGKILL (or SIGTERM without cleanup) leaves ``.NAME.PID.XXXX.tmp`` beside
+    ``NAME``. Such a file is removed when it is older than this process's start and its pid is
+    not a live process (``.NAME.XXXX.tmp`` files of older versions, without a pid: when older
+    than an hour). Returns the removed paths; errors are ignored.
+    """
+    path = Path(path)
+    directory = path.parent if str(path.parent) else Path(".")
+    prefix = f".{path.name}."
+    removed: list[Path] = []
+    try:
+        candidates = [c for c in directory.iterdir() if c.name.startswith(prefix)]
+    except OSError:
+        return removed
+    now = time.time()
+    for candidate in candidates:
+        name = candidate.name
+        if not name.endswith(".tmp"):
+            continue
+        try:
+            mtime = candidate.lstat().st_mtime
+        except OSError:
+            continue
+        if mtime >= _PROCESS_START:
+            continue
+        middle = name[len(prefix) : -len(".tmp")].split(".")
+        if len(middle) == 2 and middle[0].isdigit():
+            if _pid_alive(int(middle[0])):
+                continue
+        elif now - mtime < _LEGACY_TEMP_AGE_S:
+            continue
+        with contextlib.suppress(OSError):
+            candidate.unlink()
+            removed.append(candidate)
+    return removed
 
 
 def atomic_write(
@@ -16,10 +75,12 @@ def atomic_write(
 ) -> Path:
     """Write a file through ``write(tmp_path)`` then atomically move it to ``path``.
 
-    The temporary file lives in the target directory (same file system, so ``os.replace`` is
-    atomic) and is flushed to disk before the move; if ``write`` raises, it is removed and an
-    existing ``path`` is left untouched. The result keeps the permissions of the file it
-    replaces, or gets 0644 when new (not ``mkstemp``'s private 0600).
+    The temporary file ``.NAME.PID.XXXX.tmp`` lives in the target directory (same file system,
+    so ``os.replace`` is atomic; the pid lets a later run remove the leftovers of a killed one,
+    :func:`clean_stale_temps`, which runs first) and is flushed to disk before the move; if
+    ``write`` raises, it is removed and an existing ``path`` is left untouched. The result keeps
+    the permissions of the file it replaces, or gets 0644 when new (not ``mkstemp``'s private
+    0600).
 
     Parameters
     ----------
@@ -35,7 +96,8 @@ def atomic_write(
     directory = path.parent if str(path.parent) else Path(".")
     if make_parents:
         directory.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
+    clean_stale_temps(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}.", suffix=".tmp", dir=directory)
     os.close(fd)
     tmp_path = Path(tmp)
     try:

@@ -50,6 +50,7 @@ __all__ = [
     "Policy",
     "evaluate_policies",
     "load_policy",
+    "policy_labels",
     "run_episodes",
     "summarize",
     "write_results",
@@ -337,6 +338,8 @@ class ModelPolicy:
     model: Any
     obs_normalizer: Any = None
     path: str = ""
+    #: ``[env]`` of the run's ``config.toml`` (``id``, ``kwargs``) when saved with the model.
+    training_env: dict = field(default_factory=dict)
     _unused: dict = field(default_factory=dict, repr=False)
 
     def predict(
@@ -369,9 +372,17 @@ def load_policy(path: str | Path, device: str = "cpu") -> ModelPolicy:
         raise FileNotFoundError(f"no saved model at {zip_path}")
     names: list[str] = list(ALGORITHMS)
     config_path = run_dir / "config.toml"
+    training_env: dict = {}
     if config_path.exists():
-        algo = tomllib.loads(config_path.read_text())["algorithm"]["name"].upper()
-        names = [algo]
+        try:
+            saved = tomllib.loads(config_path.read_text())
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{config_path}: invalid TOML: {exc}") from None
+        algo = str(saved.get("algorithm", {}).get("name", "")).upper()
+        if algo:
+            names = [algo]
+        env = saved.get("env", {})
+        training_env = {"id": env.get("id"), "kwargs": dict(env.get("kwargs", {}))}
     model = None
     errors = []
     for name in names:
@@ -388,7 +399,37 @@ def load_policy(path: str | Path, device: str = "cpu") -> ModelPolicy:
         with open(norm_path, "rb") as fh:
             normalizer = pickle.load(fh)
         normalizer.training = False
-    return ModelPolicy(model=model, obs_normalizer=normalizer, path=str(zip_path))
+    return ModelPolicy(
+        model=model, obs_normalizer=normalizer, path=str(zip_path), training_env=training_env
+    )
+
+
+def policy_labels(specs: Sequence[str]) -> list[str]:
+    """One unique label per policy spec.
+
+    Baselines keep their name; ``model:PATH`` is labelled by its run folder (``model:RUN`` for
+    ``RUN/model.zip`` or the folder ``RUN``, ``model:NAME.zip`` for another file name), or by
+    the path as typed where two models would share a label (every ``train`` run writes
+    ``model.zip``). The same spec twice raises ``ValueError``.
+    """
+    specs = [s.strip() for s in specs]
+    dup = sorted({s for i, s in enumerate(specs) if s in specs[:i]})
+    if dup:
+        raise ValueError(f"--policies: {', '.join(dup)} given more than once; expected each once")
+
+    def short(spec: str) -> str:
+        if not spec.startswith("model:"):
+            return spec
+        path = Path(spec[len("model:") :])
+        if path.name == "model.zip" and path.parent.name:
+            return f"model:{path.parent.name}"
+        return f"model:{path.name or path}"
+
+    labels = [short(s) for s in specs]
+    return [
+        spec if labels.count(label) > 1 else label
+        for spec, label in zip(specs, labels, strict=True)
+    ]
 
 
 def _policy_factory(spec: str, device: str = "cpu") -> tuple[str, Any]:
@@ -399,7 +440,7 @@ def _policy_factory(spec: str, device: str = "cpu") -> tuple[str, Any]:
     if spec.startswith("model:"):
         path = spec[len("model:") :]
         policy = load_policy(path, device=device)
-        return f"model:{Path(path).name or path}", policy
+        return policy_labels([spec])[0], policy
     if spec in BASELINES:
         return spec, lambda env, name=spec: make_baseline(name, env)
     raise ValueError(f"unknown policy {spec!r}: expected one of {sorted(BASELINES)} or model:PATH")
@@ -415,8 +456,15 @@ def evaluate_policies(
     max_steps: int | None = None,
     progress: bool = True,
     device: str = "cpu",
+    use_training_env: bool = True,
+    report: Any = None,
 ) -> dict[str, Any]:
     """Evaluate each policy on episodes seeded ``seed … seed + episodes − 1``.
+
+    A saved model runs, by default (``use_training_env``), with the env keyword arguments it
+    was trained with (``[env] kwargs`` of its run's ``config.toml``), updated by ``env_kwargs``;
+    ``report(message)`` (e.g. ``print``) is told which settings were applied. Each policy gets
+    a unique label (:func:`policy_labels`).
 
     Returns
     -------
@@ -436,15 +484,35 @@ def evaluate_policies(
         "max_steps": max_steps,
         "policies": {},
         "wall_time_s": {},
+        "policy_env_kwargs": {},
     }
-    for spec in policies:
-        label, policy = _policy_factory(spec, device=device)
+    labels = policy_labels(policies)
+    for spec, label in zip(policies, labels, strict=True):
+        _, policy = _policy_factory(spec, device=device)
+        kwargs = dict(env_kwargs or {})
+        training_env = getattr(policy, "training_env", None) or {}
+        if training_env:
+            trained_id = training_env.get("id")
+            trained_kwargs = dict(training_env.get("kwargs") or {})
+            if trained_id and trained_id != env_id and report is not None:
+                report(f"warning: {label} was trained on {trained_id}, evaluated on {env_id}")
+            if use_training_env and trained_kwargs:
+                kwargs = {**trained_kwargs, **kwargs}
+                if report is not None:
+                    overridden = sorted(set(trained_kwargs) & set(env_kwargs or {}))
+                    report(
+                        f"{label}: using the env settings it was trained with {trained_kwargs}"
+                        + (f" (overridden by --set: {overridden})" if overridden else "")
+                    )
+            elif trained_kwargs and report is not None:
+                report(f"{label}: ignoring the env settings it was trained with {trained_kwargs}")
+        out["policy_env_kwargs"][label] = kwargs
         t0 = time.perf_counter()
         stats = run_episodes(
             env_id,
             policy,
             seeds,
-            env_kwargs,
+            kwargs,
             max_steps=max_steps,
             progress=progress,
             label=label,

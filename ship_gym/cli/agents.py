@@ -16,7 +16,29 @@ import math
 from pathlib import Path
 
 from ship_gym.agents.configs import shipped_config_names
-from ship_gym.cli.common import add_overrides_argument, parse_overrides
+from ship_gym.cli.common import (
+    CLIError,
+    add_overrides_argument,
+    count,
+    parse_overrides,
+    prepare_output,
+    prepare_output_dir,
+    seed,
+)
+
+
+def _check_env_id(env_id: str, option: str = "--env") -> None:
+    """Refuse an unregistered env id before any work (gymnasium's NameNotFound…)."""
+    import gymnasium  # the ids are registered: importing ship_gym.cli imported ship_gym
+
+    try:
+        gymnasium.spec(env_id)
+    except gymnasium.error.Error as exc:
+        known = sorted(k for k in gymnasium.registry if k.startswith("ship_gym/"))
+        raise CLIError(
+            f"{option} {env_id!r}: {str(exc).rstrip('.')}; expected a registered id, e.g. "
+            + ", ".join(known)
+        ) from None
 
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
@@ -28,10 +50,10 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         + ", ".join(shipped_config_names())
         + "); relative paths inside it (output_dir) are from the working directory",
     )
-    p.add_argument("--timesteps", type=int, default=None, help="override total_timesteps")
-    p.add_argument("--seed", type=int, default=None, help="override the seed")
+    p.add_argument("--timesteps", type=count, default=None, help="override total_timesteps")
+    p.add_argument("--seed", type=seed, default=None, help="override the seed")
     p.add_argument("--output", default=None, help="override the run directory")
-    p.add_argument("--n-envs", type=int, default=None, help="override the number of episodes")
+    p.add_argument("--n-envs", type=count, default=None, help="override the number of episodes")
     p.add_argument("--device", default=None, help="torch device (cpu, cuda)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_train)
@@ -45,14 +67,20 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         default="zero",
         help="comma-separated: zero, pid, fins, ride, model:RUN_DIR_OR_ZIP (default: zero)",
     )
-    p.add_argument("--episodes", type=int, default=20, help="episodes per policy")
-    p.add_argument("--seed", type=int, default=0, help="episode k is reset with seed + k")
-    p.add_argument("--max-steps", type=int, default=None, help="override the time limit")
+    p.add_argument("--episodes", type=count, default=20, help="episodes per policy")
+    p.add_argument("--seed", type=seed, default=0, help="episode k is reset with seed + k")
+    p.add_argument("--max-steps", type=count, default=None, help="override the time limit")
     add_overrides_argument(p, "env keyword arguments (JSON values), e.g. forcing_amplitude=0.04")
     p.add_argument("--out", default="out/evaluation", help="directory for CSV, JSON and PNG")
     p.add_argument("--no-plot", action="store_true", help="skip the bar chart")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     p.add_argument("--json", default=None, help="also write the results JSON to this path")
+    p.add_argument(
+        "--no-training-env",
+        action="store_true",
+        help="run saved models with --set only, not the env settings they were trained with "
+        "(by default a model's training [env] kwargs are applied, then --set)",
+    )
     p.set_defaults(func=_cmd_evaluate)
 
 
@@ -68,6 +96,13 @@ def _cmd_train(args: argparse.Namespace) -> int:
         device=args.device,
         progress_bar=False if args.no_progress else None,
     )
+    _check_env_id(config.env_id, f"{args.config}: [env] id")
+    if Path(config.output_dir).exists() and not Path(config.output_dir).is_dir():
+        raise CLIError(
+            f"{'--output' if args.output else 'output_dir'}: {config.output_dir!r} is a file; "
+            "expected a run directory"
+        )
+    prepare_output_dir(config.output_dir, "--output" if args.output else "output_dir")
     print(
         f"training {config.algorithm} on {config.env_id}: {config.n_envs} episodes "
         f"({config.vectorization}), {config.total_timesteps} steps, seed {config.seed} → "
@@ -85,18 +120,44 @@ def _cmd_train(args: argparse.Namespace) -> int:
 
 
 def _cmd_evaluate(args: argparse.Namespace) -> int:
-    from ship_gym.agents.evaluate import METRICS, evaluate_policies, write_results
+    from ship_gym.agents.evaluate import METRICS, evaluate_policies, policy_labels, write_results
     from ship_gym.io_utils import atomic_write_text
 
-    policies = [p for p in args.policies.split(",") if p.strip()]
+    _check_env_id(args.env)
+    policies = [p.strip() for p in args.policies.split(",") if p.strip()]
+    if not policies:
+        raise CLIError("--policies: expected at least one of zero, pid, fins, ride, model:PATH")
+    try:
+        policy_labels(policies)
+    except ValueError as exc:
+        raise CLIError(str(exc)) from None
+    from ship_gym.agents.baselines import BASELINES
+
+    for spec in policies:
+        if spec.startswith("model:"):
+            path = Path(spec[len("model:") :])
+            zip_path = path / "model.zip" if path.is_dir() else path
+            if not zip_path.is_file():
+                raise CLIError(f"--policies {spec}: no saved model at {zip_path}")
+        elif spec not in BASELINES:
+            raise CLIError(
+                f"--policies: unknown policy {spec!r}; expected one of "
+                + ", ".join(sorted(BASELINES))
+                + " or model:PATH"
+            )
+    overrides = parse_overrides(args.set)
+    prepare_output_dir(args.out, "--out")
+    prepare_output(args.json, "--json")
     results = evaluate_policies(
         args.env,
         policies,
         args.episodes,
         args.seed,
-        parse_overrides(args.set),
+        overrides,
         max_steps=args.max_steps,
         progress=not args.no_progress,
+        use_training_env=not args.no_training_env,
+        report=print,
     )
     out = write_results(results, args.out, plot=not args.no_plot)
     width = max(len(k) for k in results["policies"]) + 2

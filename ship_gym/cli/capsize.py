@@ -15,7 +15,19 @@ from __future__ import annotations
 
 import argparse
 
-from ship_gym.cli.common import add_overrides_argument, parse_overrides, write_json
+from ship_gym.cli.common import (
+    CLIError,
+    add_overrides_argument,
+    bounded_float,
+    check_irregular_sea,
+    count,
+    n_jobs,
+    parse_overrides,
+    positive_float,
+    prepare_output,
+    unique,
+    write_json,
+)
 
 ENGINE_HELP = (
     "how the engine runs the study: 'auto'/'engine' (default) the seeds of a cell as the ships "
@@ -41,13 +53,17 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--headings",
-        type=float,
+        type=bounded_float(-360.0, 360.0),
         nargs="+",
         default=[0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0],
         help="relative wave headings β [deg] (0 following, 180 head seas)",
     )
     p.add_argument(
-        "--froude", type=float, nargs="+", default=[0.1, 0.2, 0.3], help="Froude numbers"
+        "--froude",
+        type=bounded_float(0.0, 1.0),
+        nargs="+",
+        default=[0.1, 0.2, 0.3],
+        help="Froude numbers, in [0, 1]",
     )
     p.add_argument(
         "--sea",
@@ -55,9 +71,11 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         default=["regular:10.5:262.5"],
         help="sea states: 'regular:H:lambda' [m] or 'jonswap:Hs:Tp' [m, s]",
     )
-    p.add_argument("--seeds", type=int, default=1, help="seeds per cell (0..n-1)")
-    p.add_argument("--duration", type=float, default=720.0, help="simulated time per run [s]")
-    p.add_argument("--dt", type=float, default=0.1, help="physics time step [s]")
+    p.add_argument("--seeds", type=count, default=1, help="seeds per cell (0..n-1)")
+    p.add_argument(
+        "--duration", type=positive_float, default=720.0, help="simulated time per run [s]"
+    )
+    p.add_argument("--dt", type=positive_float, default=0.1, help="physics time step [s]")
     p.add_argument("--integrator", default="rk4", choices=("rk4", "holloway"))
     p.add_argument(
         "--radiation",
@@ -66,11 +84,11 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--capsize-angle",
-        type=float,
+        type=bounded_float(0.0, 180.0, low_open=True),
         default=None,
         help="|roll| counted as capsize [deg] (default: vanishing angle of the GZ curve)",
     )
-    p.add_argument("--n-jobs", type=int, default=1, help="parallel worker processes")
+    p.add_argument("--n-jobs", type=n_jobs, default=1, help="parallel worker processes")
     p.add_argument(
         "--results", default="out/capsize_map.jsonl", help="JSON-lines results (resumable)"
     )
@@ -86,20 +104,28 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     )
     q.add_argument("--hull", default="s175")
     add_overrides_argument(q, "hull overrides")
-    q.add_argument("--wavelength-ratio", type=float, default=1.0, help="λ/L [-]")
-    q.add_argument("--steepness", type=float, default=1.0 / 30.0, help="H/λ [-]")
+    q.add_argument("--wavelength-ratio", type=positive_float, default=1.0, help="λ/L [-]")
     q.add_argument(
-        "--heading", type=float, default=180.0, help="β [deg]: 180 head seas, 0 following"
+        "--steepness",
+        type=bounded_float(0.0, 1.0 / 7.0, low_open=True),
+        default=1.0 / 30.0,
+        help="H/λ [-], in (0, 1/7] (the breaking limit)",
+    )
+    q.add_argument(
+        "--heading",
+        type=bounded_float(-360.0, 360.0),
+        default=180.0,
+        help="β [deg]: 180 head seas, 0 following",
     )
     q.add_argument(
         "--froude",
-        type=float,
+        type=bounded_float(0.0, 1.0),
         default=None,
         help="Froude number (default: the one giving ω_e = 2 ω_φ, if any)",
     )
     q.add_argument("--simulate", action="store_true", help="also run the simulator")
-    q.add_argument("--duration", type=float, default=600.0, help="simulated time [s]")
-    q.add_argument("--dt", type=float, default=0.1, help="physics time step [s]")
+    q.add_argument("--duration", type=positive_float, default=600.0, help="simulated time [s]")
+    q.add_argument("--dt", type=positive_float, default=0.1, help="physics time step [s]")
     q.add_argument("--json", default=None, help="write the numbers to this JSON file")
     q.add_argument("--plot", default="", help="roll time history (PNG) with --simulate")
     _add_engine_argument(q)
@@ -110,12 +136,14 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     )
     d.add_argument("--hull", default="s175")
     add_overrides_argument(d, "hull overrides")
-    d.add_argument("--hs", type=float, default=7.0, help="significant wave height [m]")
-    d.add_argument("--tp", type=float, default=15.0, help="peak period [s]")
-    d.add_argument("--seeds", type=int, default=4, help="number of seeds")
-    d.add_argument("--duration", type=float, default=600.0, help="simulated time per seed [s]")
-    d.add_argument("--dt", type=float, default=0.1, help="physics time step [s]")
-    d.add_argument("--n-jobs", type=int, default=1, help="parallel worker processes")
+    d.add_argument("--hs", type=positive_float, default=7.0, help="significant wave height [m]")
+    d.add_argument("--tp", type=positive_float, default=15.0, help="peak period [s]")
+    d.add_argument("--seeds", type=count, default=4, help="number of seeds")
+    d.add_argument(
+        "--duration", type=positive_float, default=600.0, help="simulated time per seed [s]"
+    )
+    d.add_argument("--dt", type=positive_float, default=0.1, help="physics time step [s]")
+    d.add_argument("--n-jobs", type=n_jobs, default=1, help="parallel worker processes")
     d.add_argument(
         "--hold-yaw",
         action="store_true",
@@ -127,16 +155,42 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     d.set_defaults(func=cmd_dead_ship)
 
 
+def _check_times(args: argparse.Namespace) -> None:
+    if args.dt > 1.0:
+        raise CLIError(f"--dt {args.dt:g} s is too coarse for the 6-DOF model; expected <= 1 s")
+    if args.dt > args.duration:
+        raise CLIError(f"--dt {args.dt:g} s is longer than --duration {args.duration:g} s")
+
+
 def cmd_capsize_map(args: argparse.Namespace) -> int:
     """Run (or resume) a capsize map and print its summary."""
     from ship_gym.analysis import capsize_map as cm
 
+    _check_times(args)
+    unique([h % 360.0 for h in args.headings], "--headings", "headings [deg] (mod 360)")
+    headings = tuple(args.headings)
+    froude = unique(args.froude, "--froude", "Froude numbers")
+    seas = []
+    for text in args.sea:
+        try:
+            spec = cm.SeaSpec.parse(text)
+        except ValueError as exc:
+            raise CLIError(f"--sea: {exc}") from None
+        if spec.kind == "irregular" and spec.period is not None:
+            check_irregular_sea(spec.height, spec.period, f"--sea {text}")
+        seas.append(spec)
+    dup = sorted({args.sea[i] for i, sp in enumerate(seas) if sp in seas[:i]})
+    if dup:
+        raise CLIError(f"--sea: duplicate sea states {', '.join(dup)}; expected each one once")
+    prepare_output(args.results, "--results")
+    prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
+    prepare_output(args.json, "--json")
     config = cm.CapsizeMapConfig(
         hull=args.hull,
         hull_overrides=parse_overrides(args.set),
-        headings_deg=tuple(args.headings),
-        froude_numbers=tuple(args.froude),
-        seas=tuple(cm.SeaSpec.parse(s) for s in args.sea),
+        headings_deg=headings,
+        froude_numbers=froude,
+        seas=tuple(seas),
         seeds=tuple(range(int(args.seeds))),
         duration=args.duration,
         dt=args.dt,
@@ -186,6 +240,9 @@ def cmd_parametric_roll(args: argparse.Namespace) -> int:
     """Mathieu susceptibility check (and optionally the simulator)."""
     from ship_gym.analysis import intact_stability as ist
 
+    _check_times(args)
+    prepare_output(args.json, "--json")
+    prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
     check = ist.parametric_roll_check(
         args.hull,
         parse_overrides(args.set),
@@ -216,6 +273,9 @@ def cmd_dead_ship(args: argparse.Namespace) -> int:
     """Dead-ship condition: roll statistics and capsize probability over seeds."""
     from ship_gym.analysis import intact_stability as ist
 
+    _check_times(args)
+    check_irregular_sea(args.hs, args.tp, "--hs/--tp")
+    prepare_output(args.json, "--json")
     res = ist.dead_ship(
         args.hull,
         parse_overrides(args.set),

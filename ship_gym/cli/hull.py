@@ -3,9 +3,17 @@
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
-from ship_gym.cli.common import add_overrides_argument, parse_overrides, write_json
+from ship_gym.cli.common import (
+    CLIError,
+    add_overrides_argument,
+    bounded_float,
+    parse_overrides,
+    positive_float,
+    prepare_output,
+    write_json,
+    write_or_rescue,
+)
 
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
@@ -13,11 +21,39 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("hull", help="particulars, hydrostatics and GZ curve of a library hull")
     p.add_argument("hull", help="s175, box_barge, hemisphere or wigley")
     add_overrides_argument(p, "builder overrides, e.g. kg=10.0 n_sections=80")
-    p.add_argument("--heel-max", type=float, default=90.0, help="largest heel [deg]")
-    p.add_argument("--heel-step", type=float, default=5.0, help="heel step [deg]")
+    p.add_argument(
+        "--heel-max", type=bounded_float(0.0, 180.0, low_open=True), default=90.0,
+        help="largest heel [deg], in (0, 180]",
+    )  # fmt: skip
+    p.add_argument("--heel-step", type=positive_float, default=5.0, help="heel step [deg], > 0")
     p.add_argument("--plot", default="out/gz.png", help="GZ plot (PNG); '' to skip")
     p.add_argument("--json", default=None, help="write the numbers to this JSON file")
     p.set_defaults(func=_cmd_hull)
+
+
+def _check_loading(hull: object, hs: object, overrides: dict) -> None:
+    """Refuse a loading condition without positive GM or with G outside the hull, naming
+    ``kg`` when it was set with ``--set``."""
+    import numpy as np
+
+    kg = float(getattr(hull, "kg", np.nan))
+    depth = float(getattr(getattr(hull, "particulars", None), "depth", np.inf))
+    gmt = float(getattr(hs, "gmt", np.nan))
+    name = "--set kg" if "kg" in overrides else "the loading condition"
+    if not np.isfinite(kg) or kg < 0.0:
+        raise CLIError(
+            f"{name}: KG = {kg:g} m puts G below the keel; expected 0 <= KG (<= depth {depth:g} m)"
+        )
+    if kg > depth:
+        raise CLIError(
+            f"{name}: KG = {kg:g} m puts G above the deck (depth {depth:g} m); expected "
+            "0 <= KG <= depth"
+        )
+    if not np.isfinite(gmt) or gmt <= 0.0:
+        raise CLIError(
+            f"{name}: KG = {kg:g} m gives GMt = {gmt:.3f} m <= 0 at the design waterline (the "
+            f"ship is unstable upright); expected KG < KM = {kg + gmt:.3f} m"
+        )
 
 
 def _cmd_hull(args: argparse.Namespace) -> int:
@@ -25,9 +61,18 @@ def _cmd_hull(args: argparse.Namespace) -> int:
 
     from ship_gym.hull import equilibrium, hydrostatics, load_hull, righting_arm
 
-    hull = load_hull(args.hull, **parse_overrides(args.set))
+    if args.heel_step > args.heel_max:
+        raise CLIError(
+            f"--heel-step {args.heel_step:g} is larger than --heel-max {args.heel_max:g}; "
+            "expected a step <= the largest heel"
+        )
+    plot = prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
+    prepare_output(args.json, "--json")
+    overrides = parse_overrides(args.set)
+    hull = load_hull(args.hull, **overrides)
     p = hull.particulars
     hs = hydrostatics(hull)
+    _check_loading(hull, hs, overrides)
     eq = equilibrium(hull)
     hs_eq = hydrostatics(hull, heave=eq.heave, trim=eq.trim)
     heels = np.arange(0.0, args.heel_max + 1e-9, args.heel_step)
@@ -83,9 +128,9 @@ def _cmd_hull(args: argparse.Namespace) -> int:
         ax.set_ylim(min(-0.5, curve.gz.min() * 1.1), max(curve.gz.max() * 1.3, 0.5))
         ax.legend()
         ax.grid(alpha=0.3)
-        Path(args.plot).parent.mkdir(parents=True, exist_ok=True)
         fig.tight_layout()
-        fig.savefig(args.plot, dpi=120)
+        assert plot is not None
+        write_or_rescue(plot, lambda f: fig.savefig(f, dpi=120, format=plot.suffix[1:]), "--plot")
         print(f"wrote {args.plot}")
     write_json(
         args.json,

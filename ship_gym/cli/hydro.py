@@ -3,12 +3,26 @@
 from __future__ import annotations
 
 import argparse
+import os
+import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
-from ship_gym.cli.common import add_overrides_argument, parse_overrides, write_json
+from ship_gym.cli.common import (
+    CLIError,
+    add_overrides_argument,
+    bounded_float,
+    min_count,
+    n_jobs,
+    parse_overrides,
+    positive_float,
+    prepare_output,
+    unique,
+    write_json,
+    write_or_rescue,
+)
 
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
@@ -19,25 +33,27 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     add_overrides_argument(p, "hull builder overrides (mesh resolution, loading)")
     p.add_argument(
         "--omega-max",
-        type=float,
+        type=positive_float,
         default=None,
         help="largest finite frequency [rad/s] (default: what the mesh resolves)",
     )
-    p.add_argument("--n-omega", type=int, default=40, help="number of finite frequencies")
+    p.add_argument(
+        "--n-omega", type=min_count(10), default=40, help="number of finite frequencies (>= 10)"
+    )
     p.add_argument(
         "--headings",
-        type=float,
+        type=bounded_float(-360.0, 360.0),
         nargs="*",
         default=None,
         help="wave headings [deg], ours: 0 following, 180 head seas",
     )
-    p.add_argument("--n-jobs", type=int, default=1, help="parallel BEM jobs (joblib)")
+    p.add_argument("--n-jobs", type=n_jobs, default=1, help="parallel BEM jobs (joblib)")
     p.set_defaults(func=_cmd_hydro)
 
     k = sub.add_parser("kernels", help="retardation functions of a database, with diagnostics")
     k.add_argument("database", help="'s175' (bundled) or a NetCDF database")
-    k.add_argument("--t-max", type=float, default=60.0, help="kernel duration [s]")
-    k.add_argument("--dt", type=float, default=0.05, help="kernel time step [s]")
+    k.add_argument("--t-max", type=positive_float, default=60.0, help="kernel duration [s]")
+    k.add_argument("--dt", type=positive_float, default=0.05, help="kernel time step [s]")
     k.add_argument("--method", default="filon", choices=["filon", "simpson", "trapezoid", "fft"])
     k.add_argument("--tail", default="power", choices=["none", "power", "taper"])
     k.add_argument("--plot", default="out/kernels.png", help="figure of K, L and reconstructions")
@@ -51,6 +67,12 @@ def _cmd_hydro(args: argparse.Namespace) -> int:
     from ship_gym.hydro.checks import validate_database
     from ship_gym.hydro.database import save_database
 
+    output = prepare_output(args.output, "--output", suffixes=(".nc",))
+    assert output is not None
+    if not args.headings and args.headings is not None:
+        raise CLIError("--headings: expected at least one heading [deg]")
+    if args.headings is not None:
+        unique([h % 360.0 for h in args.headings], "--headings", "headings (mod 360)")
     hull = load_hull(args.hull, **parse_overrides(args.set))
     headings = None if args.headings is None else np.radians(args.headings)
     start = time.perf_counter()
@@ -63,7 +85,14 @@ def _cmd_hydro(args: argparse.Namespace) -> int:
     )
     elapsed = time.perf_counter() - start
     report = validate_database(ds)
-    save_database(ds, args.output)
+    try:
+        save_database(ds, output)
+    except OSError as exc:
+        rescue = Path(tempfile.gettempdir()) / f"ship-gym-{os.getpid()}-{output.name}"
+        save_database(ds, rescue)
+        raise CLIError(
+            f"--output: could not write {args.output!r} ({exc}); the database was saved to {rescue}"
+        ) from None
     print(
         f"{hull.name}: {ds.attrs.get('n_panels')} panels, {ds.sizes['omega']} frequencies, "
         f"{ds.sizes['wave_direction']} headings in {elapsed:.1f} s → {args.output}"
@@ -83,6 +112,14 @@ def _cmd_kernels(args: argparse.Namespace) -> int:
         reconstruction_error,
     )
 
+    if args.dt >= args.t_max:
+        raise CLIError(
+            f"--dt {args.dt:g} must be smaller than --t-max {args.t_max:g}; expected dt < t_max"
+        )
+    plot = prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
+    prepare_output(args.json, "--json")
+    if Path(args.database).is_dir():
+        raise CLIError(f"database {args.database!r} is a directory; expected a NetCDF file")
     ds = load_database(args.database)
     arr = as_arrays(ds)
     if arr.added_mass_infinite is None:
@@ -139,8 +176,8 @@ def _cmd_kernels(args: argparse.Namespace) -> int:
                 axes=row,
             )
         fig.tight_layout()
-        Path(args.plot).parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(args.plot, dpi=110)
+        assert plot is not None
+        write_or_rescue(plot, lambda f: fig.savefig(f, dpi=110, format=plot.suffix[1:]), "--plot")
         print(f"wrote {args.plot}")
     write_json(
         args.json,

@@ -15,7 +15,15 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
-from ship_gym.cli.common import write_json
+from ship_gym.cli.common import (
+    CLIError,
+    count,
+    existing_file,
+    positive_float,
+    prepare_output,
+    write_json,
+    write_or_rescue,
+)
 
 if TYPE_CHECKING:
     from ship_gym.analysis import identification as ident
@@ -27,17 +35,22 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         "identify",
         help="fit a roll equation (McCue & Campbell eq. 2) to a roll time series by Nelder-Mead",
     )
-    p.add_argument("csv", help="CSV with a header row: time, roll [rad], roll rate [rad/s]")
+    p.add_argument(
+        "csv", type=existing_file, help="CSV with a header row: time, roll [rad], roll rate [rad/s]"
+    )
     p.add_argument(
         "--omega",
-        type=float,
+        type=positive_float,
         default=None,
         help="encounter frequency of the harmonic forcing [rad/s] (omit for input-driven or "
         "free-decay fits)",
     )
-    p.add_argument("--pieces", type=int, default=20, help="number N of piecewise integrations")
+    p.add_argument("--pieces", type=count, default=20, help="number N of piecewise integrations")
     p.add_argument(
-        "--train-end", type=float, default=None, help="end of the training window [s] (all)"
+        "--train-end",
+        type=positive_float,
+        default=None,
+        help="end of the training window [s] (all)",
     )
     p.add_argument("--time-column", default="t")
     p.add_argument("--roll-column", default="phi")
@@ -55,7 +68,9 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         choices=("endpoint", "all"),
         help="error at the piece end points (eq. 3) or at every sample",
     )
-    p.add_argument("--max-evaluations", type=int, default=4000)
+    p.add_argument(
+        "--max-evaluations", type=count, default=4000, help="Nelder-Mead evaluations (>= 1)"
+    )
     p.add_argument("--json", default=None, help="write the numbers to this JSON file")
     p.add_argument("--plot", default=None, help="figure (PNG): time history and curves")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -65,6 +80,8 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
 def _cmd_identify(args: argparse.Namespace) -> int:
     from ship_gym.analysis import identification as ident
 
+    prepare_output(args.json, "--json")
+    prepare_output(args.plot, "--plot", suffixes=(".png",))
     record = ident.load_roll_csv(
         args.csv,
         time_column=args.time_column,
@@ -73,6 +90,11 @@ def _cmd_identify(args: argparse.Namespace) -> int:
         excitation_column=args.input_column,
     )
     train_end = float(record.t[-1]) if args.train_end is None else args.train_end
+    if not float(record.t[0]) < train_end <= float(record.t[-1]):
+        raise CLIError(
+            f"--train-end {train_end:g} s is outside the record ({float(record.t[0]):g} … "
+            f"{float(record.t[-1]):g} s); expected a time within it"
+        )
     result = ident.identify_roll_equation(
         record,
         omega=args.omega,
@@ -133,7 +155,6 @@ def _plot(
     import matplotlib.pyplot as plt
 
     from ship_gym.analysis import identification as ident
-    from ship_gym.io_utils import atomic_write
 
     fig = plt.figure(figsize=(11, 6.5))
     grid = fig.add_gridspec(2, 2)
@@ -144,6 +165,6 @@ def _plot(
     axes = [fig.add_subplot(grid[1, 0]), fig.add_subplot(grid[1, 1])]
     ident.plot_curves(axes, result.model, record, train_end=result.train_end)
     fig.tight_layout()
-    atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
+    write_or_rescue(path, lambda p: fig.savefig(p, dpi=110, format="png"), "--plot")
     plt.close(fig)
     print(f"wrote {path}")

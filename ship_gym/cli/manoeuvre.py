@@ -10,7 +10,15 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ship_gym.cli.common import write_json
+from ship_gym.cli.common import (
+    CLIError,
+    bounded_float,
+    nonnegative_float,
+    positive_float,
+    prepare_output,
+    write_json,
+    write_or_rescue,
+)
 
 TESTS = ("turning", "zigzag10", "zigzag20", "all")
 
@@ -24,14 +32,17 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--test", default="all", choices=TESTS, help="which trial(s) to run")
     p.add_argument("--hull", default="s175")
     p.add_argument(
-        "--speed", type=float, default=None, help="test speed [m/s] (default: Fn = 0.25)"
+        "--speed", type=positive_float, default=None, help="test speed [m/s] (default: Fn = 0.25)"
     )
-    p.add_argument("--dt", type=float, default=0.1, help="physics time step [s]")
+    p.add_argument("--dt", type=positive_float, default=0.1, help="physics time step [s]")
     p.add_argument(
-        "--rudder-deg", type=float, default=35.0, help="turning-circle rudder angle [deg]"
+        "--rudder-deg",
+        type=bounded_float(0.0, 45.0, low_open=True),
+        default=35.0,
+        help="turning-circle rudder angle [deg], in (0, 45]",
     )
     p.add_argument("--port", action="store_true", help="first rudder order to port")
-    p.add_argument("--settle", type=float, default=60.0, help="straight run before [s]")
+    p.add_argument("--settle", type=nonnegative_float, default=60.0, help="straight run before [s]")
     p.add_argument("--json", default=None, help="write the numbers to this JSON file")
     p.add_argument("--plot", default="out/manoeuvre.png", help="figure (PNG); '' to skip")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
@@ -42,6 +53,10 @@ def _cmd_manoeuvre(args: argparse.Namespace) -> int:
     from ship_gym.analysis import manoeuvres as man
     from ship_gym.hull import load_hull
 
+    if args.dt > 1.0:
+        raise CLIError(f"--dt {args.dt:g} s is too coarse for the 6-DOF model; expected <= 1 s")
+    prepare_output(args.json, "--json")
+    prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
     setup = man.trial_setup(args.hull, args.speed, dt=args.dt)
     length = load_hull(args.hull).particulars.lpp
     side = -1.0 if args.port else 1.0
@@ -104,7 +119,7 @@ def _plot(results: list, path: str) -> None:
         else:
             man.plot_zigzag(ax, res)
     fig.tight_layout()
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    suffix = Path(path).suffix[1:].lower() or "png"
+    write_or_rescue(Path(path), lambda f: fig.savefig(f, dpi=110, format=suffix), "--plot")
     plt.close(fig)
     print(f"wrote {path}")

@@ -18,7 +18,16 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ship_gym.cli.common import write_json
+from ship_gym.cli.common import (
+    CLIError,
+    bounded_float,
+    finite_float,
+    min_count,
+    nonnegative_float,
+    positive_float,
+    prepare_output,
+    write_json,
+)
 
 MODELS = ("edith-terkol", "s175")
 
@@ -31,32 +40,40 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--model", default="edith-terkol", choices=MODELS)
     p.add_argument(
-        "--forcing", type=float, default=0.0195,
+        "--forcing", type=nonnegative_float, default=0.0195,
         help="edith-terkol forcing amplitude F [rad/s^2] (McCue & Campbell: 0.0195)",
     )  # fmt: skip
     p.add_argument(
-        "--integrity", type=float, nargs="*", default=None, metavar="F",
+        "--integrity", type=nonnegative_float, nargs="*", default=None, metavar="F",
         help="edith-terkol: also the integrity curve over these amplitudes [rad/s^2]",
     )  # fmt: skip
-    p.add_argument("--wave-height", type=float, default=0.0, help="s175: wave height H [m]")
-    p.add_argument("--wave-period", type=float, default=18.0, help="s175: wave period [s]")
     p.add_argument(
-        "--wave-heading-deg", type=float, default=90.0, help="s175: relative heading β [deg]"
+        "--wave-height", type=nonnegative_float, default=0.0, help="s175: wave height H [m]"
+    )
+    p.add_argument("--wave-period", type=positive_float, default=18.0, help="s175: wave period [s]")
+    p.add_argument(
+        "--wave-heading-deg", type=finite_float, default=90.0, help="s175: relative heading β [deg]"
     )
     p.add_argument(
-        "--grid", type=int, default=None,
+        "--grid", type=min_count(2), default=None,
         help="grid points per axis (default 101 edith-terkol, 21 s175)",
     )  # fmt: skip
     p.add_argument(
-        "--duration", type=float, default=None,
+        "--duration", type=positive_float, default=None,
         help="integration time [s] (default 200 edith-terkol, 120 s175)",
     )  # fmt: skip
     p.add_argument(
-        "--dt", type=float, default=None, help="time step [s] (default 0.05 / 0.1 for s175)"
+        "--dt",
+        type=positive_float,
+        default=None,
+        help="time step [s] (default 0.05 / 0.1 for s175)",
     )
-    p.add_argument("--roll-max", type=float, default=None, help="grid half-width in roll [rad]")
     p.add_argument(
-        "--rate-max", type=float, default=None, help="grid half-width in roll rate [rad/s]"
+        "--roll-max", type=bounded_float(0.0, 3.2, low_open=True), default=None,
+        help="grid half-width in roll [rad], in (0, 3.2]",
+    )  # fmt: skip
+    p.add_argument(
+        "--rate-max", type=positive_float, default=None, help="grid half-width in roll rate [rad/s]"
     )
     p.add_argument("--json", default=None, help="write the numbers to this JSON file")
     p.add_argument("--csv", default=None, help="write the basin (CSV; .nc suffix: NetCDF)")
@@ -69,6 +86,15 @@ def _cmd_safe_basin(args: argparse.Namespace) -> int:
     from ship_gym.analysis import safe_basin as sb
     from ship_gym.roll.equation import RollEquation
 
+    if args.dt is not None and args.duration is not None and args.dt > args.duration:
+        raise CLIError(f"--dt {args.dt:g} s is longer than --duration {args.duration:g} s")
+    if args.integrity is not None and args.model != "edith-terkol":
+        raise CLIError("--integrity is for --model edith-terkol only")
+    if args.integrity is not None and not args.integrity:
+        raise CLIError("--integrity: expected at least one forcing amplitude F [rad/s^2]")
+    prepare_output(args.json, "--json")
+    prepare_output(args.csv, "--csv", suffixes=(".csv", ".nc"))
+    prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
     progress = not args.no_progress
     separatrix = None
     curve = None

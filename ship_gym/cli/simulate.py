@@ -9,6 +9,18 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ship_gym.cli.common import (
+    CLIError,
+    count,
+    finite_float,
+    irregular_sea,
+    nonnegative_float,
+    positive_float,
+    prepare_output,
+    seed,
+    write_or_rescue,
+)
+
 if TYPE_CHECKING:
     from ship_gym.engine.simulator import SimulationResult
 
@@ -18,32 +30,33 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("simulate", help="time-domain 6-DOF simulation in regular/irregular waves")
     p.add_argument("--hull", default="s175")
     p.add_argument("--database", default="s175", help="'s175' or a NetCDF database")
-    p.add_argument("--speed", type=float, default=0.0, help="forward speed [m/s]")
+    p.add_argument("--speed", type=nonnegative_float, default=0.0, help="forward speed [m/s]")
     p.add_argument(
         "--heading-deg",
-        type=float,
+        type=finite_float,
         default=180.0,
         help="wave heading β [deg]: 0 following, 90 beam (from port), 180 head seas",
     )
     sea = p.add_mutually_exclusive_group()
     sea.add_argument(
         "--regular",
-        type=float,
+        type=positive_float,
         nargs=2,
         metavar=("H", "LAMBDA"),
         help="regular wave height [m] and length [m]",
     )
     sea.add_argument(
         "--irregular",
-        type=float,
+        type=positive_float,
         nargs=2,
         metavar=("HS", "TP"),
-        help="JONSWAP significant height [m] and peak period [s]",
+        help="JONSWAP significant height [m] and peak period [s]; Hs/λp <= 1/7 "
+        "(λp = g Tp²/2π, the breaking limit)",
     )
-    p.add_argument("--components", type=int, default=50, help="irregular-sea components")
-    p.add_argument("--seed", type=int, default=0, help="seed of the irregular sea")
-    p.add_argument("--duration", type=float, default=300.0, help="simulated time [s]")
-    p.add_argument("--dt", type=float, default=0.05, help="physics time step [s]")
+    p.add_argument("--components", type=count, default=50, help="irregular-sea components")
+    p.add_argument("--seed", type=seed, default=0, help="seed of the irregular sea")
+    p.add_argument("--duration", type=positive_float, default=300.0, help="simulated time [s]")
+    p.add_argument("--dt", type=positive_float, default=0.05, help="physics time step [s]")
     p.add_argument(
         "--radiation",
         default="state_space",
@@ -73,10 +86,22 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
 def _cmd_simulate(args: argparse.Namespace) -> int:
     from ship_gym.conventions import DOF_NAMES, dof_index
     from ship_gym.engine.ship import ShipSetup, build_simulator
-    from ship_gym.io_utils import atomic_write
     from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
-    held = [dof_index(d.strip()) for d in args.hold.split(",") if d.strip()]
+    if args.dt > 1.0:
+        raise CLIError(f"--dt {args.dt:g} s is too coarse for the 6-DOF model; expected <= 1 s")
+    if args.dt > args.duration:
+        raise CLIError(f"--dt {args.dt:g} s is longer than --duration {args.duration:g} s")
+    if args.irregular is not None:
+        irregular_sea(args.irregular, "--irregular")
+    try:
+        held = [dof_index(d.strip()) for d in args.hold.split(",") if d.strip()]
+    except (ValueError, KeyError, IndexError) as exc:
+        raise CLIError(f"--hold {args.hold!r}: {exc}") from None
+    out = prepare_output(args.output, "--output", suffixes=(".nc", ".csv"))
+    if out is None:
+        raise CLIError("--output: expected a .nc or .csv file path, got ''")
+    plot = prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
     free = tuple(i not in held for i in range(6))
     setup = ShipSetup(
         hull=args.hull,
@@ -115,8 +140,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     )
     ds = result.to_dataset()
     ds.attrs.update({k: str(v) for k, v in vars(args).items() if k != "func"})
-    out = Path(args.output)
-    if out.suffix == ".csv":
+    if out.suffix.lower() == ".csv":
         frame = {"t": result.t, "wave_elevation": result.elevation}
         for i, name in enumerate(DOF_NAMES):
             frame[f"eta_{name}"] = result.eta[:, i]
@@ -124,14 +148,18 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             frame[f"nu_{name}"] = result.nu[:, i]
         header = ",".join(frame)
         table = np.column_stack(list(frame.values()))
-        atomic_write(out, lambda p: np.savetxt(p, table, delimiter=",", header=header, comments=""))
+        write_or_rescue(
+            out,
+            lambda p: np.savetxt(p, table, delimiter=",", header=header, comments=""),
+            "--output",
+        )
     else:
         from ship_gym.hydro.database import netcdf_engine
 
-        atomic_write(out, lambda p: ds.to_netcdf(p, engine=netcdf_engine()))
+        write_or_rescue(out, lambda p: ds.to_netcdf(p, engine=netcdf_engine()), "--output")
     print(f"wrote {out}")
-    if args.plot:
-        _plot(result, args.plot, f"{args.hull}, U = {args.speed} m/s, β = {args.heading_deg}°")
+    if plot is not None:
+        _plot(result, str(plot), f"{args.hull}, U = {args.speed} m/s, β = {args.heading_deg}°")
     return 0
 
 
@@ -157,6 +185,6 @@ def _plot(result: SimulationResult, path: str, title: str) -> None:
     for ax in axes:
         ax.grid(alpha=0.3)
     fig.tight_layout()
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    suffix = Path(path).suffix[1:].lower() or "png"
+    write_or_rescue(Path(path), lambda f: fig.savefig(f, dpi=110, format=suffix), "--plot")
     print(f"wrote {path}")

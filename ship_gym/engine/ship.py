@@ -164,31 +164,79 @@ class ShipSetup:
 Sea = RegularWave | IrregularSea | None
 
 
+def resolve_wave_heading(sea: Sea, wave_heading: float | None, default: float = 0.0) -> float:
+    """The one relative wave heading β [rad] of a run, from the sea and/or ``wave_heading``.
+
+    The ship starts heading north, so β equals the sea's direction χ. Rules:
+
+    * only ``wave_heading`` given (the sea's ``heading`` left at its default): ``wave_heading``;
+    * only the sea's ``heading`` given (``wave_heading=None``): the sea's heading;
+    * both given: they must agree (modulo 2π, to 1e-9 rad), else :class:`ValueError` naming both;
+    * neither: ``default``.
+    """
+    from ship_gym.waves.sea_state import heading_is_set
+
+    given = sea is not None and heading_is_set(sea)
+    if wave_heading is None:
+        return float(sea.heading) if given and sea is not None else float(default)
+    try:
+        beta = float(wave_heading)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"wave_heading must be a relative wave heading in radians, got {wave_heading!r}"
+        ) from None
+    if not np.isfinite(beta):
+        raise ValueError(f"wave_heading must be finite [rad], got {wave_heading!r}")
+    if given and sea is not None:
+        diff = abs(np.angle(np.exp(1j * (beta - float(sea.heading)))))
+        if diff > 1e-9:
+            raise ValueError(
+                f"two different wave headings: {type(sea).__name__}(heading="
+                f"{float(sea.heading)!r}) ({np.degrees(float(sea.heading)):.6g} deg) and "
+                f"wave_heading={beta!r} ({np.degrees(beta):.6g} deg); give only one of them "
+                "(the sea's heading, or wave_heading with the sea's heading left unset)"
+            )
+    return beta
+
+
 @overload
 def wave_field_for(
-    sea: RegularWave | IrregularSea, wave_heading: float, rng: np.random.Generator | None = None
+    sea: RegularWave | IrregularSea,
+    wave_heading: float | None = None,
+    rng: np.random.Generator | None = None,
 ) -> WaveField: ...
 @overload
 def wave_field_for(
-    sea: Sea, wave_heading: float, rng: np.random.Generator | None = None
+    sea: Sea, wave_heading: float | None = None, rng: np.random.Generator | None = None
 ) -> WaveField | None: ...
 def wave_field_for(
-    sea: Sea, wave_heading: float, rng: np.random.Generator | None = None
+    sea: Sea, wave_heading: float | None = None, rng: np.random.Generator | None = None
 ) -> WaveField | None:
     """Wave field of a sea state seen by a ship heading north: waves travel to χ = β.
+
+    One source of truth for the heading (:func:`resolve_wave_heading`): ``wave_heading`` when
+    the sea's own ``heading`` is left at its default, the sea's ``heading`` when
+    ``wave_heading`` is None; both given and different raise :class:`ValueError`.
 
     Parameters
     ----------
     sea : RegularWave, IrregularSea or None
-        Sea state (its own ``heading`` is replaced by ``wave_heading``).
-    wave_heading : float
+        Sea state.
+    wave_heading : float, optional
         Relative wave heading β [rad] (0 following, π head seas).
     rng : numpy.random.Generator, optional
         Source of the random phases/frequencies of an irregular sea.
+
+    Raises
+    ------
+    ValueError
+        If the sea's explicit ``heading`` and ``wave_heading`` differ, or an irregular sea
+        comes without ``rng``.
     """
     if sea is None:
         return None
-    sea = dataclasses.replace(sea, heading=float(wave_heading))
+    beta = resolve_wave_heading(sea, wave_heading)
+    sea = dataclasses.replace(sea, heading=beta)
     if isinstance(sea, RegularWave):
         return WaveField.regular(sea)
     if rng is None:
@@ -320,7 +368,7 @@ def build_simulator(
     setup: ShipSetup,
     sea: Sea = None,
     *,
-    wave_heading: float = np.pi,
+    wave_heading: float | None = None,
     rng: np.random.Generator | None = None,
 ) -> Simulator:
     """A simulator at the free-floating equilibrium, moving at ``setup.speed`` heading north.
@@ -331,11 +379,14 @@ def build_simulator(
         Ship, models and numerics.
     sea : RegularWave, IrregularSea or None
         Sea state (None: calm water).
-    wave_heading : float
-        Relative wave heading β [rad] (0 following seas, π head seas).
+    wave_heading : float, optional
+        Relative wave heading β [rad] (0 following seas, π head seas). Default: the sea's own
+        ``heading`` if it was given, else π (head seas); both given and different raise
+        :class:`ValueError` (:func:`resolve_wave_heading`).
     rng : numpy.random.Generator, optional
         For irregular seas (one seed, one sea).
     """
+    wave_heading = resolve_wave_heading(sea, wave_heading, default=np.pi)
     hull = load_hull(setup.hull, **setup.hull_overrides)
     database = load_database(setup.database)
     wave_field = wave_field_for(sea, wave_heading, rng)

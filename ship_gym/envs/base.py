@@ -153,24 +153,54 @@ class BatchedTask(abc.ABC):
         """Release resources (nothing by default)."""
 
 
-def validate_actions(actions: ArrayLike, shape: tuple[int, ...]) -> NDArray:
+def validate_actions(
+    actions: ArrayLike,
+    shape: tuple[int, ...],
+    name: str = "actions",
+    scalar_ok: bool = False,
+) -> NDArray:
     """Actions as float64 of ``shape``, clipped to [-1, 1].
+
+    ``name`` is the argument as the user passed it (``"action"`` for the single env,
+    ``"actions"`` for the vector env, whose ``shape`` is ``(num_envs, n_actions)``); with
+    ``scalar_ok`` a plain number stands for an action of one entry. No reshaping: an array of
+    the right size but the wrong shape (e.g. (n_actions, num_envs)) would give the ships each
+    other's commands.
 
     Raises
     ------
+    TypeError
+        Not an array of real numbers (strings, complex, objects, booleans).
     ValueError
         Wrong shape, or any NaN/inf entry (a diverging policy must fail loudly, not steer the
         ship with NaN).
     """
-    a = np.asarray(actions, dtype=np.float64)
+    expected = f"expected shape {shape} float array in Box(-1, 1)"
+    if isinstance(actions, np.ndarray):
+        a = actions
+    else:
+        try:
+            a = np.asarray(actions)
+        except (TypeError, ValueError) as err:  # ragged sequences
+            raise ValueError(
+                f"{name} must be an array of {expected}, got {actions!r}: {err}"
+            ) from None
+    if a.dtype.kind not in "fiu":
+        raise TypeError(
+            f"{name} must be real numbers ({expected}), got dtype {a.dtype} shape {a.shape}: "
+            f"{actions!r}"
+        )
     if a.shape != shape:
-        if a.size == math.prod(shape) and a.ndim <= len(shape):
+        if scalar_ok and a.ndim == 0 and math.prod(shape) == 1:
             a = a.reshape(shape)
         else:
-            raise ValueError(f"action must have shape {shape}, got shape {a.shape}: {a!r}")
+            raise ValueError(
+                f"{name} must have shape {shape} ({expected}), got shape {a.shape}: {a!r}"
+            )
+    a = a.astype(np.float64, copy=False)
     out = np.empty(shape)
     if not _clip_unit(a.reshape(-1), out.reshape(-1)):
-        raise ValueError(f"action must be finite (Box(-1, 1)), got {a!r}")
+        raise ValueError(f"{name} must be finite ({expected}), got {a!r}")
     return out
 
 
@@ -190,7 +220,31 @@ def _bounded(obs: NDArray, space: spaces.Box, task: BatchedTask) -> NDArray[np.f
     they are from a task whose :meth:`BatchedTask.observations` already does that."""
     if task.observations_bounded:
         return obs
-    return np.clip(obs, space.low, space.high).astype(np.float32, copy=False)
+    out = np.clip(obs, space.low, space.high).astype(np.float32, copy=False)
+    if not np.isfinite(out).all():  # a diverged state never reaches the agent as NaN
+        out = np.nan_to_num(out, nan=0.0, posinf=0.0, neginf=0.0)
+    return out
+
+
+def _guard_divergence(
+    reward: NDArray, terminated: NDArray, info: dict[str, Any]
+) -> tuple[NDArray, NDArray]:
+    """Episodes whose reward is not finite: reward 0, terminated, ``info["diverged"]`` set (the
+    last guard behind the tasks' own divergence checks; a no-op for finite rewards)."""
+    bad = ~np.isfinite(reward)
+    if bad.any():
+        reward = np.where(bad, 0.0, reward)
+        terminated = terminated | bad
+        info["diverged"] = np.asarray(info.get("diverged", np.zeros(bad.shape, bool)), bool) | bad
+    return reward, terminated
+
+
+def _check_options(options: Any) -> None:
+    if options is not None and not isinstance(options, Mapping):
+        raise TypeError(
+            f"options must be a mapping (dict) of reset options or None, got "
+            f"{type(options).__name__} {options!r}"
+        )
 
 
 def _check_render_mode(render_mode: str | None) -> str | None:
@@ -282,7 +336,12 @@ class TaskEnv(_TaskView, gymnasium.Env):
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[NDArray[np.float32], dict[str, Any]]:
-        super().reset(seed=seed)
+        if seed is not None and (
+            isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0
+        ):
+            raise ValueError(f"seed must be a non-negative int or None, got {seed!r}")
+        _check_options(options)
+        super().reset(seed=None if seed is None else int(seed))
         self.task.reset_episodes(self._ids, [self.np_random], options)
         self._steps = 0
         self._has_reset = True
@@ -297,19 +356,26 @@ class TaskEnv(_TaskView, gymnasium.Env):
     ) -> tuple[NDArray[np.float32], float, bool, bool, dict[str, Any]]:
         if not self._has_reset:
             raise RuntimeError("call reset() before step()")
-        a = validate_actions(action, (1, *self.action_space.shape))
+        a = validate_actions(
+            action, self.action_space.shape, name="action", scalar_ok=True
+        ).reshape(1, -1)
         result = self.task.step(a)
         self._steps += 1
         info: dict[str, Any] = {f"reward_{k}": float(v[0]) for k, v in result.reward_terms.items()}
         info["cost"] = float(result.cost[0])
         info.update({k: _item(v, 0) for k, v in result.info.items()})
+        reward = float(result.reward()[0])
+        terminated = bool(result.terminated[0])
+        if not math.isfinite(reward):  # the last guard behind the task's divergence checks
+            reward, terminated = 0.0, True
+            info["diverged"] = True
         info["time"] = self._steps * self.task.control_dt
         if self.render_mode == "human":
             self.render()
         return (
             _bounded(self.task.observations()[0], self.observation_space, self.task),
-            float(result.reward()[0]),
-            bool(result.terminated[0]),
+            reward,
+            terminated,
             False,
             info,
         )
@@ -411,20 +477,32 @@ class TaskVectorEnv(_TaskView, VectorEnv):
         if seed is None:
             seeds: list[int | None] = [None] * len(ids)
         elif isinstance(seed, int | np.integer):
-            if isinstance(seed, bool):
+            if isinstance(seed, bool) or seed < 0:
                 raise ValueError(self._seed_error(seed))
             seeds = [int(seed) + int(i) for i in ids]
         else:
-            seeds = list(seed)
-            if len(seeds) != self.num_envs:
+            if isinstance(seed, str | bytes | Mapping) or not isinstance(
+                seed, Sequence | np.ndarray
+            ):
                 raise ValueError(self._seed_error(seed))
+            seeds = list(seed)
+            if len(seeds) != self.num_envs or not all(
+                s is None
+                or (isinstance(s, int | np.integer) and not isinstance(s, bool) and s >= 0)
+                for s in seeds
+            ):
+                raise ValueError(self._seed_error(seed))
+            seeds = [None if s is None else int(s) for s in seeds]
             seeds = [seeds[int(i)] for i in ids]
         for i, s in zip(ids, seeds, strict=True):
             if s is not None or self._rngs[int(i)] is None:
                 self._rngs[int(i)], _ = seeding.np_random(s)
 
     def _seed_error(self, seed: object) -> str:
-        return f"seed must be an int, None or a sequence of {self.num_envs} seeds, got {seed!r}"
+        return (
+            f"seed must be a non-negative int, None or a sequence of {self.num_envs} such seeds "
+            f"(one per episode), got {seed!r}"
+        )
 
     def _rng(self, i: int) -> np.random.Generator:
         rng = self._rngs[i]
@@ -444,6 +522,7 @@ class TaskVectorEnv(_TaskView, VectorEnv):
         seed: int | Sequence[int | None] | None = None,
         options: dict[str, Any] | None = None,
     ) -> tuple[NDArray[np.float32], dict[str, Any]]:
+        _check_options(options)
         options = dict(options or {})
         mask = options.pop("reset_mask", None)
         if mask is None:
@@ -482,6 +561,10 @@ class TaskVectorEnv(_TaskView, VectorEnv):
         self._steps += stepped  # +1 where stepped
         reward = result.reward()
         terminated = np.asarray(result.terminated, dtype=bool).copy()
+        diverged_info: dict[str, Any] = {}
+        if "diverged" in result.info:
+            diverged_info["diverged"] = result.info["diverged"]
+        reward, terminated = _guard_divergence(reward, terminated, diverged_info)
         truncated = np.zeros(self.num_envs, dtype=bool)
         if self.max_episode_steps is not None:
             truncated = (self._steps >= self.max_episode_steps) & ~terminated
@@ -493,7 +576,7 @@ class TaskVectorEnv(_TaskView, VectorEnv):
             infos[f"_reward_{key}"] = stepped.copy()
         infos["cost"] = np.asarray(result.cost, dtype=np.float64)
         infos["_cost"] = stepped.copy()
-        for key, value in result.info.items():
+        for key, value in {**result.info, **diverged_info}.items():
             infos[key] = np.asarray(value)
             infos[f"_{key}"] = stepped.copy()
         infos["time"] = self._steps * self.task.control_dt

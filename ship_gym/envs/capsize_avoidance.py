@@ -26,7 +26,7 @@ from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.s175 import S175_MESH, S175Task, ship_kwargs
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.ship_task import StepStatistics, write_heading_observations
-from ship_gym.envs.validation import check_positive, check_range, check_weight
+from ship_gym.envs.validation import check_positive, check_range, check_real, check_weight
 from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.typing import IntegratorName, Precision
 
@@ -111,6 +111,7 @@ class CapsizeAvoidanceTask(S175Task):
         wave_preview_m: Sequence[float] = (),
     ) -> None:
         args = dict(locals())  # the arguments, forwarded by name (ship_kwargs)
+        check_real("froude_number", froude_number, low=0.05, high=0.5, unit="-")
         if sea_kind not in ("regular", "irregular"):
             raise ValueError(f"sea_kind must be 'regular' or 'irregular', got {sea_kind!r}")
         ratio = check_range(
@@ -149,6 +150,15 @@ class CapsizeAvoidanceTask(S175Task):
             heading_range_deg=wave_heading_range_deg,
             n_components=n_wave_components,
             ramp_time=wave_ramp_time_s,
+            keywords=(
+                "wave_height_range_m",
+                "wavelength_ratio_range (as periods [s])",
+                "wave_heading_range_deg",
+                "n_wave_components",
+                "gamma",
+                "wave_spreading_s",
+                "wave_ramp_time_s",
+            ),
         )
         speed_range: tuple[float, float] | None = None
         if froude_range is not None:

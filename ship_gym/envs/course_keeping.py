@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -20,7 +20,7 @@ from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.s175 import RUDDER_LIMIT_DEG, S175_MESH, S175Task, irregular_sea, ship_kwargs
 from ship_gym.envs.ship_task import StepStatistics, clip_into, write_heading_observations
-from ship_gym.envs.validation import check_positive, check_weight
+from ship_gym.envs.validation import check_positive, check_real, check_weight
 from ship_gym.typing import IntegratorName, Precision
 
 __all__ = ["MAX_EPISODE_STEPS", "CourseKeepingEnv", "CourseKeepingTask", "CourseKeepingVectorEnv"]
@@ -73,15 +73,15 @@ class CourseKeepingTask(S175Task):
         self.max_rudder_increment = math.radians(
             check_positive("max_rudder_increment_deg", max_rudder_increment_deg, "deg", 70.0)
         )
-        if not (
-            isinstance(initial_heading_error_deg, int | float)
-            and 0.0 <= initial_heading_error_deg <= 180.0
-        ):
-            raise ValueError(
-                f"initial_heading_error_deg must be in [0, 180] [deg], got "
-                f"{initial_heading_error_deg!r}"
+        self.initial_heading_error = math.radians(
+            check_real(
+                "initial_heading_error_deg",
+                initial_heading_error_deg,
+                low=0.0,
+                high=180.0,
+                unit="deg",
             )
-        self.initial_heading_error = math.radians(initial_heading_error_deg)
+        )
         self.heading_weight = check_weight("heading_weight", heading_weight)
         self.heading_scale = math.radians(
             check_positive("heading_scale_deg", heading_scale_deg, "deg", 180.0)
@@ -111,8 +111,15 @@ class CourseKeepingTask(S175Task):
         )
 
     # ------------------------------------------------------------------ hooks
+    task_reset_options = ("heading_setpoint_deg",)
+
+    def _check_task_option(self, key: str, value: Any) -> Any:
+        return check_real(f"options[{key!r}]", value, low=-180.0, high=180.0, unit="deg")
+
     def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
         e = float(rng.uniform(-self.initial_heading_error, self.initial_heading_error))
+        if "heading_setpoint_deg" in self._task_options:
+            e = math.radians(self._task_options["heading_setpoint_deg"])
         self.heading_setpoint[i] = e  # the ship starts heading north (ψ = 0)
         return {"heading_setpoint_deg": math.degrees(e)}
 

@@ -69,6 +69,50 @@ SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
 ``## Arguments`` tables; :func:`env_docstring` takes each default from the task's signature)."""
 
 
+RESET_OPTION_ROWS: dict[str, tuple[str, str]] = {
+    # key: (unit, meaning and accepted values); the same names as the reset info, so that
+    # reset(seed=s, options={k: info[k] ...}) replays an episode
+    "wave_height_m": (
+        "m",
+        "wave height H (regular) or Hs (irregular), 0 … 30, not steeper than the breaking "
+        "limit H/λ ≤ 1/7 (regular) or DNV-RP-C205's Hs/λp ≤ 1/15 … 1/25 (irregular)",
+    ),
+    "wave_period_s": ("s", "wave period T (regular) or peak period Tp (irregular), 1 … 40"),
+    "wave_heading_deg": ("deg", "relative wave heading β (0 following, 180 head seas), −360 … 720"),
+    "initial_speed_mps": ("m/s", "initial surge speed (self-propulsion shaft speed), 0.1 … 30"),
+    "gm_m": ("m", "GM of the episode's loading, 0.05 … 10 (G moved, capsize angle follows)"),
+    "roll_deg": ("deg", "initial roll angle, inside the capsize angle of the loading"),
+    "roll_rate_dps": ("deg/s", "initial roll rate, −30 … 30"),
+    "heading_setpoint_deg": ("deg", "initial heading set-point (instead of the drawn error)"),
+}
+"""Unit and meaning of the ``reset(options=...)`` keys of the ship environments."""
+
+
+def reset_options_table(task_class: type[BatchedTask]) -> str:
+    """The reset-options paragraph and table of a ship task (closing its Starting State
+    section): every key it accepts, its unit and range."""
+    keys = tuple(getattr(task_class, "RESET_OPTIONS", ())) + tuple(
+        getattr(task_class, "task_reset_options", ())
+    )
+    lines = [
+        "``reset(options=dict(...))`` fixes what the episode's generator would draw (the draws "
+        "still "
+        "happen, so the rest of the episode is that of the same seed); the sea, speed, GM and "
+        "set-point keys are those of the reset info, so an episode replays from its seed and "
+        "info. Unknown keys, a non-mapping "
+        "and values outside the ranges raise (ValueError/TypeError naming the key). The vector "
+        "env applies them to every episode being reset (``reset_mask`` selects them); "
+        "autoresets draw afresh.",
+        "",
+        "| key | unit | meaning and accepted values |",
+        "|---|---|---|",
+    ]
+    for key in keys:
+        unit, meaning = RESET_OPTION_ROWS[key]
+        lines.append(f"| {key} | {unit} | {meaning} |")
+    return "\n".join(lines)
+
+
 def _format_default(value: Any) -> str:
     if isinstance(value, str):
         return f'"{value}"'
@@ -154,6 +198,18 @@ def env_docstring(
             doc = _fill(doc, "ship_observations", SHIP_OBSERVATION_TABLE)
         if "{time_limit}" in doc:
             doc = _fill(doc, "time_limit", _time_limit(name, task_class))
+        # the reset options close the Starting State section (the v5 sections stay as they are)
+        found = re.search(r"^([ \t]*)## Episode End", doc, re.MULTILINE)
+        if found is not None:
+            indent = found.group(1)
+            text = "**Reset options.** " + reset_options_table(task_class)
+            doc = (
+                doc[: found.start()]
+                + text.replace("\n", "\n" + indent).replace("\n" + indent + "\n", "\n\n")
+                + "\n\n"
+                + doc[found.start() :]
+            )
+            doc = doc[: found.start()] + indent + doc[found.start() :]
         sections = [
             "## Arguments",
             arguments_table(task_class, arguments or {}),

@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from ship_gym.envs.base import BatchedTask, TaskEnv, TaskStep, TaskVectorEnv
 from ship_gym.envs.registration import max_episode_steps
+from ship_gym.envs.validation import check_options, check_real, is_real
 from ship_gym.roll.equation import EDITH_TERKOL_NATURAL_FREQUENCY, RollEquation
 
 if TYPE_CHECKING:
@@ -47,12 +48,25 @@ NOMINAL_LENGTH, NOMINAL_BEAM, NOMINAL_DRAUGHT, NOMINAL_DEPTH = 30.0, 7.5, 2.8, 4
 RENDER_HISTORY_STEPS = 200
 RESET_OPTIONS = ("forcing_amplitude", "forcing_phase", "initial_roll", "initial_roll_rate")
 
+MAX_ROLL_MOMENT = 10.0
+"""Largest accepted ``forcing_amplitude`` and ``max_moment`` [rad/s²]: 50 times the Edith
+Terkol's largest restoring moment per unit inertia (≈ 0.2 rad/s² near 0.4 rad); a larger moment
+capsizes any ship within one control step and only overflows the integration."""
+
+MAX_SUBSTEPS = 1000
+"""Most RK4 steps in one control step (``control_dt`` ≤ 1000 ``physics_dt``)."""
+
+MAX_PHYSICS_DT = 0.5
+"""Largest accepted ``physics_dt`` [s]: T_n/20 of the Edith Terkol (T_n = 10.1 s), the step of
+an accurate RK4 roll integration (and ≤ T_n/20 of any other ``roll_equation``)."""
+
 
 def _finite_float(value: Any, name: str, unit: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a finite number [{unit}], got {value!r}") from None
+    if not is_real(value):
+        raise ValueError(
+            f"{name} must be a finite number [{unit}], got {value!r} ({type(value).__name__})"
+        )
+    v = float(value)
     if not math.isfinite(v):
         raise ValueError(f"{name} must be a finite number [{unit}], got {value!r}")
     return v
@@ -127,17 +141,29 @@ class RollOneDOFTask(BatchedTask):
         self.forcing_amplitude_range = _range(
             forcing_amplitude, "forcing_amplitude", "rad/s^2", non_negative=True
         )
-        self.random_forcing_phase = bool(random_forcing_phase)
-        self.max_moment = _finite_float(max_moment, "max_moment", "rad/s^2")
-        if self.max_moment < 0.0:
-            raise ValueError(f"max_moment must be >= 0 [rad/s^2], got {max_moment!r}")
-
-        self.control_dt = _finite_float(control_dt, "control_dt", "s")
-        self.physics_dt = _finite_float(physics_dt, "physics_dt", "s")
-        if self.control_dt <= 0.0 or self.physics_dt <= 0.0:
+        if self.forcing_amplitude_range[1] > MAX_ROLL_MOMENT:
             raise ValueError(
-                f"control_dt and physics_dt must be > 0 [s], got {control_dt!r}, {physics_dt!r}"
+                f"forcing_amplitude must be in [0, {MAX_ROLL_MOMENT:g}] [rad/s^2] (50 times the "
+                f"largest restoring moment), got {forcing_amplitude!r}"
             )
+        self.random_forcing_phase = bool(random_forcing_phase)
+        self.max_moment = check_real(
+            "max_moment", max_moment, low=0.0, high=MAX_ROLL_MOMENT, unit="rad/s^2",
+            why=" (50 times the largest restoring moment)",
+        )  # fmt: skip
+
+        wn = base.natural_frequency
+        dt_high = MAX_PHYSICS_DT
+        if math.isfinite(wn) and wn > 0.0:
+            dt_high = min(dt_high, 2.0 * math.pi / wn / 20.0)
+        self.physics_dt = check_real(
+            "physics_dt", physics_dt, low=0.0, high=dt_high, unit="s", low_open=True,
+            why=" (T_n/20 of the roll equation: an accurate RK4 step)",
+        )  # fmt: skip
+        self.control_dt = check_real(
+            "control_dt", control_dt, low=0.0, high=MAX_SUBSTEPS * self.physics_dt, unit="s",
+            low_open=True, why=f" (at most {MAX_SUBSTEPS} physics_dt steps per control step)",
+        )  # fmt: skip
         ratio = self.control_dt / self.physics_dt
         self.substeps = round(ratio)
         if self.substeps < 1 or abs(ratio - self.substeps) > 1e-9 * ratio:
@@ -148,6 +174,11 @@ class RollOneDOFTask(BatchedTask):
 
         self.initial_roll_range = _range(initial_roll, "initial_roll", "rad")
         self.initial_roll_rate_range = _range(initial_roll_rate, "initial_roll_rate", "rad/s")
+        if max(abs(v) for v in self.initial_roll_rate_range) > ROLL_RATE_BOUND:
+            raise ValueError(
+                f"initial_roll_rate must stay within ±{ROLL_RATE_BOUND:.4f} rad/s (the "
+                f"observation bound 2π), got {initial_roll_rate!r}"
+            )
         if capsize_angle is None:
             capsize_angle = self.equation.vanishing_angle()
         self.capsize_angle = _finite_float(capsize_angle, "capsize_angle", "rad")
@@ -199,6 +230,7 @@ class RollOneDOFTask(BatchedTask):
         self.phase = np.zeros(n)
         self.moment = np.zeros(n)
         self.capsized = np.zeros(n, dtype=bool)
+        self.diverged = np.zeros(n, dtype=bool)
         self._noise = np.zeros((n, 2))
         self._noise_rngs: list[np.random.Generator | None] = [None] * n
         self._hist_roll = np.full((n, RENDER_HISTORY_STEPS), np.nan)
@@ -211,12 +243,7 @@ class RollOneDOFTask(BatchedTask):
         rngs: Sequence[np.random.Generator],
         options: Mapping[str, Any] | None,
     ) -> None:
-        opts = dict(options or {})
-        unknown = set(opts) - set(RESET_OPTIONS)
-        if unknown:
-            raise ValueError(f"unknown reset options {sorted(unknown)}; expected {RESET_OPTIONS}")
-        for key in opts:
-            opts[key] = _finite_float(opts[key], f"options[{key!r}]", "rad, rad/s or rad/s^2")
+        opts = self._check_reset_options(options)
         for i, rng in zip(ids, rngs, strict=True):
             i = int(i)
             # draws always happen, in this order, so options do not shift the random stream
@@ -232,10 +259,36 @@ class RollOneDOFTask(BatchedTask):
             self.time[i] = 0.0
             self.moment[i] = 0.0
             self.capsized[i] = abs(self.phi[i]) > self.capsize_angle
+            self.diverged[i] = False
             self._noise_rngs[i] = np.random.default_rng(int(noise_seed))
             self._hist_len[i] = 0
         self._draw_noise(ids)
         self._record(np.asarray(ids, dtype=np.int64))
+
+    def _check_reset_options(self, options: Mapping[str, Any] | None) -> dict[str, float]:
+        """``reset(options=...)`` with the constructor's checks: unknown keys, non-numbers and
+        values outside the constructor's limits raise, naming the key."""
+        opts = check_options(options, RESET_OPTIONS)
+        out: dict[str, float] = {}
+        for key, value in opts.items():
+            name = f"options[{key!r}]"
+            if key == "forcing_amplitude":
+                out[key] = check_real(name, value, low=0.0, high=MAX_ROLL_MOMENT, unit="rad/s^2")
+            elif key == "forcing_phase":
+                out[key] = check_real(
+                    name, value, low=-4.0 * math.pi, high=4.0 * math.pi, unit="rad"
+                )
+            elif key == "initial_roll":
+                c = self.capsize_angle
+                out[key] = check_real(
+                    name, value, low=-c, high=c, unit="rad", low_open=True, high_open=True,
+                    why=" (inside the capsize angle)",
+                )  # fmt: skip
+            else:
+                out[key] = check_real(
+                    name, value, low=-ROLL_RATE_BOUND, high=ROLL_RATE_BOUND, unit="rad/s"
+                )
+        return out
 
     def _draw_noise(self, ids: NDArray[np.int64]) -> None:
         if self.roll_noise_std == 0.0 and self.roll_rate_noise_std == 0.0:
@@ -270,9 +323,22 @@ class RollOneDOFTask(BatchedTask):
             phase,
             stop_at=self.capsize_angle,
         )
+        # a diverged integration (non-finite state) ends the episode, held at its last state
+        diverged = ~(np.isfinite(phi) & np.isfinite(phidot))
+        if diverged.any():
+            # held capsized: at the capsize angle on the side it was going, at rest
+            hold = diverged & ~was_capsized
+            self.diverged = self.diverged | hold
+            side = np.where(np.where(np.isnan(phi), self.phi, phi) < 0.0, -1.0, 1.0)
+            phi = np.where(hold, side * self.capsize_angle, phi)
+            phidot = np.where(hold, 0.0, phidot)
+            crossed = crossed | diverged
+            was_held = was_capsized
+        else:
+            was_held = was_capsized
         # a capsized ship is held where it capsized (stepping it again must not raise)
-        self.phi = np.where(was_capsized, self.phi, phi)
-        self.phidot = np.where(was_capsized, self.phidot, phidot)
+        self.phi = np.where(was_held, self.phi, phi)
+        self.phidot = np.where(was_held, self.phidot, phidot)
         self.time = self.time + self.control_dt
         self.capsized = was_capsized | crossed
         ids = np.arange(self.num_envs)
@@ -296,6 +362,7 @@ class RollOneDOFTask(BatchedTask):
             terminated=self.capsized.copy(),
             info={
                 "capsized": self.capsized.copy(),
+                "diverged": self.diverged.copy(),
                 "roll_deg": np.degrees(self.phi),
                 "roll_moment": self.moment.copy(),
                 "forcing_amplitude": self.amplitude.copy(),
@@ -389,13 +456,17 @@ class RollOneDOFEnv(TaskEnv):
     --------------
     φ₀ ~ U(initial_roll), φ̇₀ ~ U(initial_roll_rate), F ~ U(forcing_amplitude) (domain
     randomisation), ε ~ U(0, 2π) if ``random_forcing_phase``; all from the episode's generator.
-    ``reset(options=...)`` may fix ``forcing_amplitude`` [rad/s²], ``forcing_phase`` [rad],
-    ``initial_roll`` [rad], ``initial_roll_rate`` [rad/s].
+    ``reset(options=...)`` may fix ``forcing_amplitude`` [rad/s²] (0 … 10), ``forcing_phase``
+    [rad] (±4π), ``initial_roll`` [rad] (inside ±capsize_angle), ``initial_roll_rate`` [rad/s]
+    (±2π), with the constructor's checks; other keys, a non-mapping and values outside these
+    raise, naming the key.
 
     Episode End
     -----------
     Terminated when |φ| exceeds ``capsize_angle`` at any physics step (capsize; the state is held
-    there). Truncated after ``MAX_EPISODE_STEPS`` control steps, the registered time limit
+    there), or when the integration diverges (non-finite state: ``info["diverged"]``, the state
+    held at its last finite value). Truncated after ``MAX_EPISODE_STEPS`` control steps, the
+    registered time limit
     (:data:`ship_gym.envs.registration.ENTRIES`: 500 s at the default ``control_dt``).
 
     Arguments
@@ -408,15 +479,17 @@ class RollOneDOFEnv(TaskEnv):
     random_forcing_phase : bool
         Sample ε ~ U(0, 2π) per episode (else ε = 0).
     max_moment : float
-        Control moment at |a| = 1 [rad/s²], default 0.03.
+        Control moment at |a| = 1 [rad/s²], default 0.03; at most 10 (``MAX_ROLL_MOMENT``, as
+        ``forcing_amplitude``).
     control_dt : float
-        Control step [s], default 0.5; an integer multiple of physics_dt.
+        Control step [s], default 0.5; an integer multiple of physics_dt, at most 1000 of them.
     physics_dt : float
-        RK4 step [s], default 0.05.
+        RK4 step [s], default 0.05; at most 0.5 s = T_n/20 (the roll equation's natural period
+        over 20: an accurate RK4 step).
     initial_roll : float or (low, high)
         φ₀ [rad], default (−0.1, 0.1).
     initial_roll_rate : float or (low, high)
-        φ̇₀ [rad/s], default (−0.05, 0.05).
+        φ̇₀ [rad/s], default (−0.05, 0.05); within ±2π.
     capsize_angle : float or None
         φ_c [rad]; default the vanishing angle of the restoring (0.856 rad).
     dangerous_roll_angle : float

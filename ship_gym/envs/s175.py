@@ -16,6 +16,7 @@ from numpy.typing import NDArray
 from ship_gym.conventions import GRAVITY
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.ship_task import ShipTask, StepStatistics
+from ship_gym.envs.validation import check_real
 from ship_gym.typing import IntegratorName, Precision
 
 if TYPE_CHECKING:
@@ -38,6 +39,21 @@ S175_MESH_FINE: tuple[int, int, int, int] = (90, 18, 9, 6)
 
 RUDDER_LIMIT_DEG = 35.0
 """Rudder angle limit of the servo [deg] (:data:`ship_gym.control.actuators.RUDDER_SERVO`)."""
+
+
+MIN_GM_M = 0.05
+"""Smallest GM [m] of a loading the ship tasks accept (``kg_m``, ``gm_range_m``, ``gm_m``): the
+upright ship must be stable (positive restoring, a roll natural frequency)."""
+
+
+def _metacentre_height(mesh_overrides: tuple[tuple[str, Any], ...]) -> float:
+    """KM = KG + GM [m] of the upright S175 at its design loading on a mesh (independent of KG:
+    KB + BM), from the cached loading condition."""
+    from ship_gym.engine.ship import ShipSetup
+    from ship_gym.envs.loading import loading_condition
+
+    lc = loading_condition(ShipSetup(hull="s175", hull_overrides=dict(mesh_overrides)))
+    return lc.kg + lc.gm
 
 
 def s175_setup(
@@ -73,10 +89,8 @@ def s175_setup(
     """
     from ship_gym.engine.ship import ShipSetup
 
-    if not (isinstance(froude_number, int | float) and 0.05 <= froude_number <= 0.5):
-        raise ValueError(f"froude_number must be in [0.05, 0.5] [-], got {froude_number!r}")
-    if not (isinstance(physics_dt, int | float) and 0.01 <= physics_dt <= 0.5):
-        raise ValueError(f"physics_dt must be in [0.01, 0.5] [s], got {physics_dt!r}")
+    froude_number = check_real("froude_number", froude_number, low=0.05, high=0.5, unit="-")
+    physics_dt = check_real("physics_dt_s", physics_dt, low=0.01, high=0.5, unit="s")
     if integrator not in ("holloway", "rk4"):
         raise ValueError(f"integrator must be 'holloway' or 'rk4', got {integrator!r}")
     if precision not in ("float32", "float64"):
@@ -98,8 +112,14 @@ def s175_setup(
             n_deck=int(mesh[3]),
         )
     if kg is not None:
-        if not (isinstance(kg, int | float) and 5.0 <= kg <= 12.0):
-            raise ValueError(f"kg must be in [5, 12] [m] (S175 depth 15.4 m), got {kg!r}")
+        kg = check_real("kg_m", kg, low=5.0, high=12.0, unit="m", why=" (S175 depth 15.4 m)")
+        km = _metacentre_height(tuple(sorted(overrides.items())))
+        if kg > km - MIN_GM_M:
+            raise ValueError(
+                f"kg_m = {kg!r} m leaves GM = KM - KG = {km - kg:.3f} m: the upright S175 "
+                f"needs GM >= {MIN_GM_M} m, i.e. kg_m <= {km - MIN_GM_M:.3f} m (KM = {km:.3f} m "
+                f"on this hull_mesh)"
+            )
         overrides["kg"] = float(kg)
     speed = float(froude_number) * math.sqrt(GRAVITY * 175.0)
     return ShipSetup(
@@ -163,6 +183,15 @@ def irregular_sea(values: Mapping[str, Any]) -> SeaSampler:
         n_components=values["n_wave_components"],
         spreading_s=values["wave_spreading_s"],
         ramp_time=values["wave_ramp_time_s"],
+        keywords=(
+            "hs_range_m",
+            "tp_range_s",
+            "wave_heading_range_deg",
+            "n_wave_components",
+            "gamma",
+            "wave_spreading_s",
+            "wave_ramp_time_s",
+        ),
     )
 
 
@@ -231,10 +260,12 @@ class S175Task(ShipTask, abc.ABC):
             precision=precision,
         )
         if not (
-            isinstance(num_threads, int) and not isinstance(num_threads, bool) and num_threads >= 1
+            isinstance(num_threads, int | np.integer)
+            and not isinstance(num_threads, bool)
+            and 1 <= num_threads <= 1024
         ):
-            raise ValueError(f"num_threads must be an integer >= 1, got {num_threads!r}")
-        self.num_threads = num_threads
+            raise ValueError(f"num_threads must be an integer in [1, 1024], got {num_threads!r}")
+        self.num_threads = int(num_threads)
         if setup_changes:
             setup = dataclasses.replace(setup, **setup_changes)
         super().__init__(

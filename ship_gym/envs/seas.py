@@ -5,18 +5,65 @@ seas at a random relative heading, with Matusiak's start-up ramp.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
 from ship_gym.conventions import GRAVITY
-from ship_gym.envs.validation import check_range
+from ship_gym.envs.validation import check_range, check_real
 
 if TYPE_CHECKING:
     from ship_gym.waves.wave_field import WaveField
 
 _TWO_PI = 2.0 * math.pi
+
+HEIGHT_LIMITS = (0.0, 30.0)
+"""Accepted wave heights H or Hs [m]."""
+PERIOD_LIMITS = (1.0, 40.0)
+"""Accepted wave periods T or Tp [s]."""
+HEADING_LIMITS = (-360.0, 720.0)
+"""Accepted relative wave headings [deg]."""
+
+
+def irregular_steepness_limit(tp: float) -> float:
+    """Largest average steepness S_p = 2π Hs / (g Tp²) = Hs/λp of a physical sea state (DNV-RP-C205,
+    *Environmental conditions and environmental loads*, 2010, §3.5.5.4): 1/15 for Tp ≤ 8 s,
+    1/25 for Tp ≥ 15 s, linear in between (seas steeper than this break)."""
+    if tp <= 8.0:
+        return 1.0 / 15.0
+    if tp >= 15.0:
+        return 1.0 / 25.0
+    return 1.0 / 15.0 + (tp - 8.0) / 7.0 * (1.0 / 25.0 - 1.0 / 15.0)
+
+
+def steepness_error(
+    kind: str, height: float, period: float, height_name: str, period_name: str
+) -> str | None:
+    """Why a wave of ``height`` [m] at ``period`` [s] cannot exist (None if it can): a regular
+    wave steeper than the breaking limit H/λ = MAX_STEEPNESS (Stokes/Michell: 1/7), an irregular
+    sea steeper than :func:`irregular_steepness_limit`."""
+    from ship_gym.waves.sea_state import MAX_STEEPNESS
+
+    wavelength = GRAVITY * period**2 / _TWO_PI
+    steepness = height / wavelength
+    if kind == "regular":
+        if steepness > MAX_STEEPNESS:
+            return (
+                f"{height_name} = {height:g} m at {period_name} = {period:g} s "
+                f"(λ = {wavelength:.1f} m) exceeds the breaking steepness H/λ = "
+                f"{MAX_STEEPNESS:.3f}: H <= {MAX_STEEPNESS * wavelength:.2f} m at that period"
+            )
+        return None
+    limit = irregular_steepness_limit(period)
+    if steepness > limit:
+        return (
+            f"{height_name} = {height:g} m at {period_name} = {period:g} s "
+            f"(λp = {wavelength:.1f} m, Hs/λp = {steepness:.3g}) is steeper than a "
+            f"physical sea: Hs/λp <= 1/{1.0 / limit:.1f} at that Tp (DNV-RP-C205 §3.5.5.4: 1/15 "
+            f"for Tp <= 8 s, 1/25 for Tp >= 15 s), i.e. Hs <= {limit * wavelength:.2f} m"
+        )
+    return None
 
 
 @dataclass(frozen=True)
@@ -44,6 +91,9 @@ class SeaSampler:
         Cos-2s spreading exponent (None: long-crested).
     ramp_time : float
         Start-up ramp T_f [s] (Matusiak eq. 12).
+    keywords : tuple of str
+        The environment keyword arguments these fields came from, named in the errors (height
+        range, period range, heading range, components, γ, spreading, ramp time).
     """
 
     kind: Literal["irregular", "regular"] = "irregular"
@@ -54,53 +104,118 @@ class SeaSampler:
     gamma: float = 3.3
     spreading_s: float | None = None
     ramp_time: float = 30.0
+    keywords: tuple[str, ...] = field(
+        default=(
+            "height_range",
+            "period_range",
+            "heading_range_deg",
+            "n_components",
+            "gamma",
+            "spreading_s",
+            "ramp_time",
+        ),
+        compare=False,
+    )
 
     def __post_init__(self) -> None:
+        kh, kt, kb, kn, kg, ks, kr = self.keywords
         if self.kind not in ("irregular", "regular"):
             raise ValueError(f"sea kind must be 'irregular' or 'regular', got {self.kind!r}")
-        h = check_range("wave height range", self.height_range, low=0.0, high=30.0, unit="m")
-        t = check_range("wave period range", self.period_range, low=1.0, high=40.0, unit="s")
+        h = check_range(
+            kh, self.height_range, low=HEIGHT_LIMITS[0], high=HEIGHT_LIMITS[1], unit="m"
+        )
+        t = check_range(
+            kt, self.period_range, low=PERIOD_LIMITS[0], high=PERIOD_LIMITS[1], unit="s"
+        )
         b = check_range(
-            "wave heading range", self.heading_range_deg, low=-360.0, high=720.0, unit="deg"
+            kb, self.heading_range_deg, low=HEADING_LIMITS[0], high=HEADING_LIMITS[1], unit="deg"
         )
         object.__setattr__(self, "height_range", h)
         object.__setattr__(self, "period_range", t)
         object.__setattr__(self, "heading_range_deg", b)
         n = self.n_components
         if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= 1000:
-            raise ValueError(f"n_components must be an integer in 1…1000, got {n!r}")
-        if not (math.isfinite(self.gamma) and self.gamma >= 1.0):
-            raise ValueError(f"JONSWAP gamma must be >= 1, got {self.gamma!r}")
-        if self.spreading_s is not None and not (
-            math.isfinite(self.spreading_s) and self.spreading_s >= 0.0
-        ):
-            raise ValueError(f"spreading_s must be None or >= 0, got {self.spreading_s!r}")
-        if not (math.isfinite(self.ramp_time) and self.ramp_time >= 0.0):
-            raise ValueError(f"wave ramp time must be >= 0 [s], got {self.ramp_time!r}")
-        if self.kind == "regular":
-            from ship_gym.waves.sea_state import MAX_STEEPNESS
-
-            shortest = GRAVITY * t[0] ** 2 / _TWO_PI
-            if h[1] / shortest > MAX_STEEPNESS:
-                raise ValueError(
-                    f"regular waves up to H = {h[1]} m at T = {t[0]} s (λ = {shortest:.1f} m) "
-                    f"exceed the breaking steepness H/λ = {MAX_STEEPNESS:.3f}"
-                )
+            raise ValueError(f"{kn} must be an integer in 1…1000, got {n!r}")
+        check_real(kg, self.gamma, low=1.0, high=20.0, unit="-", why=" (JONSWAP γ)")
+        if self.spreading_s is not None:
+            check_real(ks, self.spreading_s, low=0.0, high=1000.0, unit="-", why=" or None")
+        check_real(kr, self.ramp_time, low=0.0, high=3600.0, unit="s")
+        # the steepest corner of the ranges (largest height at the shortest period) is drawn
+        error = steepness_error(self.kind, h[1], t[0], f"max of {kh}", f"min of {kt}")
+        if error is not None:
+            raise ValueError(error)
 
     @property
     def max_components(self) -> int:
         """Components of the largest sea drawn (the batch's padded count)."""
         return 1 if self.kind == "regular" else int(self.n_components)
 
-    def sample(self, rng: np.random.Generator) -> tuple[WaveField, dict[str, float]]:
+    def check_options(self, options: dict[str, Any]) -> dict[str, float]:
+        """The sea entries ``wave_height_m``, ``wave_period_s``, ``wave_heading_deg`` of
+        ``reset(options=...)`` validated as the constructor validates the ranges (limits and
+        steepness: a given height is checked against the given period, else against the
+        shortest period of the range), as floats."""
+        out: dict[str, float] = {}
+        what = "H" if self.kind == "regular" else "Hs"
+        if "wave_height_m" in options:
+            out["wave_height_m"] = check_real(
+                "options['wave_height_m']",
+                options["wave_height_m"],
+                low=HEIGHT_LIMITS[0],
+                high=HEIGHT_LIMITS[1],
+                unit="m",
+                why=f" ({what} of this {self.kind} sea)",
+            )
+        if "wave_period_s" in options:
+            out["wave_period_s"] = check_real(
+                "options['wave_period_s']",
+                options["wave_period_s"],
+                low=PERIOD_LIMITS[0],
+                high=PERIOD_LIMITS[1],
+                unit="s",
+                why=" (T)" if self.kind == "regular" else " (Tp)",
+            )
+        if "wave_heading_deg" in options:
+            out["wave_heading_deg"] = check_real(
+                "options['wave_heading_deg']",
+                options["wave_heading_deg"],
+                low=HEADING_LIMITS[0],
+                high=HEADING_LIMITS[1],
+                unit="deg",
+            )
+        if out:
+            height = out.get("wave_height_m", self.height_range[1])
+            if "wave_period_s" in out:
+                period, pname = out["wave_period_s"], "options['wave_period_s']"
+            else:
+                period, pname = self.period_range[0], f"min of {self.keywords[1]}"
+            hname = (
+                "options['wave_height_m']"
+                if "wave_height_m" in out
+                else f"max of {self.keywords[0]}"
+            )
+            if "wave_height_m" in out or "wave_period_s" in out:
+                error = steepness_error(self.kind, height, period, hname, pname)
+                if error is not None:
+                    raise ValueError(error)
+        return out
+
+    def sample(
+        self, rng: np.random.Generator, fixed: dict[str, float] | None = None
+    ) -> tuple[WaveField, dict[str, float]]:
         """One episode's wave field and its parameters (``wave_height_m``, ``wave_period_s``,
-        ``wave_heading_deg``)."""
+        ``wave_heading_deg``); ``fixed`` (from :meth:`check_options`) replaces drawn ones (the
+        draws still happen, so the components and what follows are those of the same seed)."""
         from ship_gym.engine.ship import wave_field_for
         from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
         height = float(rng.uniform(*self.height_range))
         period = float(rng.uniform(*self.period_range))
         heading_deg = float(rng.uniform(*self.heading_range_deg))
+        if fixed:
+            height = fixed.get("wave_height_m", height)
+            period = fixed.get("wave_period_s", period)
+            heading_deg = fixed.get("wave_heading_deg", heading_deg)
         beta = math.radians(heading_deg)
         if self.kind == "regular":
             phase = float(rng.uniform(0.0, _TWO_PI))

@@ -69,7 +69,13 @@ from ship_gym.envs.base import BatchedTask, TaskStep
 from ship_gym.envs.loading import loading_condition
 from ship_gym.envs.prototypes import designed_propeller, prototype_simulator
 from ship_gym.envs.seas import SeaSampler
-from ship_gym.envs.validation import check_range, check_weight
+from ship_gym.envs.validation import (
+    check_options,
+    check_range,
+    check_real,
+    check_weight,
+    is_real,
+)
 from ship_gym.numerics.angles import wrap_angle_scalar
 
 if TYPE_CHECKING:
@@ -78,6 +84,17 @@ if TYPE_CHECKING:
     from ship_gym.envs.rendering import RenderSnapshot
 
 _TWO_PI = 2.0 * math.pi
+
+MAX_SUBSTEPS = 1000
+"""Most physics steps in one control step (``control_dt_s`` ≤ 1000 ``physics_dt_s``): the
+commands are held over a control step, and a longer one is no longer closed-loop control (and
+one ``step()`` would run for minutes)."""
+
+SPEED_LIMITS = (0.1, 30.0)
+"""Accepted initial speeds [m/s] (``speed_range_mps``, ``reset(options={"initial_speed_mps"})``)."""
+
+GM_LIMITS = (0.05, 10.0)
+"""Accepted GM of an episode's loading [m] (``gm_range_m``, ``reset(options={"gm_m"})``)."""
 
 
 # =============================================================================================
@@ -367,13 +384,23 @@ class ShipTask(BatchedTask, abc.ABC):
         self.capsize_penalty = check_weight("capsize_penalty", capsize_penalty)
         # --- time steps
         dt = float(setup.dt)
-        if not (isinstance(control_dt, int | float) and math.isfinite(control_dt)):
-            raise ValueError(f"control_dt must be a finite time step [s], got {control_dt!r}")
+        if not (is_real(control_dt) and math.isfinite(control_dt) and control_dt > 0.0):
+            raise ValueError(
+                f"control_dt_s must be a positive finite time step [s] (an integer multiple of "
+                f"physics_dt_s = {dt!r} s), got {control_dt!r}"
+            )
+        control_dt = float(control_dt)
+        if control_dt > MAX_SUBSTEPS * dt:
+            raise ValueError(
+                f"control_dt_s = {control_dt!r} s is more than {MAX_SUBSTEPS} physics steps of "
+                f"physics_dt_s = {dt!r} s: at most {MAX_SUBSTEPS * dt:g} s per control step (one "
+                f"step would run {control_dt / dt:.3g} physics steps with the commands held)"
+            )
         k = round(control_dt / dt)
         if k < 1 or abs(k * dt - control_dt) > 1e-9 * max(1.0, control_dt):
             raise ValueError(
-                f"control_dt = {control_dt!r} s must be a positive integer multiple of the "
-                f"physics dt = {dt!r} s"
+                f"control_dt_s = {control_dt!r} s must be a positive integer multiple of "
+                f"physics_dt_s = {dt!r} s"
             )
         self.substeps = int(k)
         self.control_dt = float(k * dt)
@@ -381,29 +408,46 @@ class ShipTask(BatchedTask, abc.ABC):
         lc = loading_condition(setup)
         self.loading = lc
         if speed_range is not None:
-            speed_range = check_range("speed_range", speed_range, low=0.1, high=30.0, unit="m/s")
+            speed_range = check_range(
+                "speed_range_mps",
+                speed_range,
+                low=SPEED_LIMITS[0],
+                high=SPEED_LIMITS[1],
+                unit="m/s",
+            )
             if not setup.propulsion:
-                raise ValueError("speed_range needs a setup with propulsion (a shaft speed)")
+                raise ValueError("speed_range_mps needs a setup with propulsion (a shaft speed)")
         self.speed_range = speed_range
         if gm_range is not None:
-            gm_range = check_range("gm_range", gm_range, low=0.05, high=10.0, unit="m")
+            gm_range = check_range(
+                "gm_range_m", gm_range, low=GM_LIMITS[0], high=GM_LIMITS[1], unit="m"
+            )
         self.gm_range = gm_range
-        if capsize_angle_deg is not None and not (
-            isinstance(capsize_angle_deg, int | float) and 0.0 < capsize_angle_deg <= 180.0
-        ):
-            raise ValueError(
-                f"capsize_angle_deg must be in (0, 180] [deg] or None, got {capsize_angle_deg!r}"
+        if capsize_angle_deg is not None:
+            capsize_angle_deg = check_real(
+                "capsize_angle_deg",
+                capsize_angle_deg,
+                low=0.0,
+                high=180.0,
+                unit="deg",
+                low_open=True,
+                why=" or None",
             )
         self.capsize_angle_deg = capsize_angle_deg
-        if not (isinstance(dangerous_roll_deg, int | float) and 0.0 < dangerous_roll_deg < 90.0):
-            raise ValueError(
-                f"dangerous_roll_deg must be in (0, 90) [deg], got {dangerous_roll_deg!r}"
-            )
+        dangerous_roll_deg = check_real(
+            "dangerous_roll_deg",
+            dangerous_roll_deg,
+            low=0.0,
+            high=90.0,
+            unit="deg",
+            low_open=True,
+            high_open=True,
+        )
         self.dangerous_roll = math.radians(dangerous_roll_deg)
-        if not (isinstance(sensor_noise, int | float) and 0.0 <= sensor_noise <= 100.0):
-            raise ValueError(f"sensor_noise must be in [0, 100] [-], got {sensor_noise!r}")
-        self.sensor_noise = float(sensor_noise)
+        self.sensor_noise = check_real("sensor_noise", sensor_noise, low=0.0, high=100.0, unit="-")
         try:
+            if isinstance(wave_preview_m, str | bytes):
+                raise TypeError
             preview = np.asarray(wave_preview_m, dtype=float).reshape(-1)
         except (TypeError, ValueError):
             raise ValueError(
@@ -414,7 +458,7 @@ class ShipTask(BatchedTask, abc.ABC):
         self.wave_preview_m = preview
         if (
             isinstance(history_length, bool)
-            or not isinstance(history_length, int)
+            or not isinstance(history_length, int | np.integer)
             or (history_length < 2)
         ):
             raise ValueError(f"history_length must be an integer >= 2, got {history_length!r}")
@@ -470,6 +514,8 @@ class ShipTask(BatchedTask, abc.ABC):
         self.gm = np.full(n, lc.gm)
         self.episode_steps = np.zeros(n, dtype=np.int64)
         self.capsized = np.zeros(n, dtype=bool)
+        self._cog_moved = np.zeros(n, dtype=bool)  # G moved by a gm_m reset option
+        self._task_options: dict[str, Any] = {}
         self._rngs: list[np.random.Generator | None] = [None] * n
         self._reset_infos: list[dict[str, float]] = [{} for _ in range(n)]
         self._obs = np.zeros((n, len(names)), dtype=np.float32)
@@ -568,49 +614,73 @@ class ShipTask(BatchedTask, abc.ABC):
             raise ValueError(f"need one generator per episode id: {len(rngs)} for {ids.size}")
         if ids.size == 0:
             return
+        opts = self._check_reset_options(options)
+        sea_opts = self.sea.check_options(opts)
         lc = self.loading
         fields = []
+        infos = []
         speeds = np.empty(ids.size)
         gms = np.empty(ids.size)
-        for k, (i, rng) in enumerate(zip(ids, rngs, strict=True)):
-            wave_field, info = self.sea.sample(rng)
+        for k, rng in enumerate(rngs):
+            wave_field, info = self.sea.sample(rng, sea_opts)
             fields.append(wave_field)
+            infos.append(info)
+            # the draws always happen, so an option does not shift the random stream
             speeds[k] = (
                 float(rng.uniform(*self.speed_range)) if self.speed_range else self.setup.speed
             )
             gms[k] = float(rng.uniform(*self.gm_range)) if self.gm_range else lc.gm
-            self.wave_direction[i] = math.radians(info["wave_heading_deg"])
-            self._rngs[int(i)] = rng
-            self._reset_infos[int(i)] = info
+        if "initial_speed_mps" in opts:
+            speeds[:] = opts["initial_speed_mps"]
+        if "gm_m" in opts:
+            gms[:] = opts["gm_m"]
         # loading: G raised by ΔKG = GM_nominal − GM
         delta_kg = lc.gm - gms
-        if self.gm_range is not None:
+        if self.capsize_angle_deg is None:
+            capsize_angles = lc.vanishing_angles(delta_kg)
+        else:
+            capsize_angles = np.full(ids.size, math.radians(self.capsize_angle_deg))
+        if "roll_deg" in opts and np.any(abs(math.radians(opts["roll_deg"])) >= capsize_angles):
+            raise ValueError(
+                f"options['roll_deg'] = {opts['roll_deg']!r} deg must be inside the capsize angle "
+                f"of the episode's loading, |roll| < {math.degrees(capsize_angles.min()):.2f} deg"
+            )
+        for k, ship in enumerate(ids.tolist()):
+            self.wave_direction[ship] = math.radians(infos[k]["wave_heading_deg"])
+            self._rngs[ship] = rngs[k]
+            self._reset_infos[ship] = infos[k]
+        if self.gm_range is not None or "gm_m" in opts or self._cog_moved[ids].any():
             cog = np.tile(np.asarray(self.sim.hull.mass.cog, float), (ids.size, 1))
             cog[:, 2] -= delta_kg
             self.sim.set_centre_of_gravity(ids, cog)
+            self._cog_moved[ids] = self.gm_range is not None or "gm_m" in opts
         self.gm[ids] = gms
-        if self.capsize_angle_deg is None:
-            self.capsize_angle[ids] = lc.vanishing_angles(delta_kg)
-        else:
-            self.capsize_angle[ids] = math.radians(self.capsize_angle_deg)
+        self.capsize_angle[ids] = capsize_angles
         # speed and shaft speed
         self.initial_speed[ids] = speeds
         nu = np.zeros((ids.size, 6))
         nu[:, 0] = speeds
+        eta = None
+        if "roll_deg" in opts:
+            eta = np.tile(self.sim.initial_eta, (ids.size, 1))
+            eta[:, 3] = math.radians(opts["roll_deg"])
+        if "roll_rate_dps" in opts:
+            nu[:, 3] = math.radians(opts["roll_rate_dps"])
         if "shaft_speed" in self.commands:
-            if self.speed_range is None:
+            if self.speed_range is None and "initial_speed_mps" not in opts:
                 self.commands["shaft_speed"][ids] = self._nominal_shaft_speed
             else:
                 self.commands["shaft_speed"][ids] = self.shaft_speed_for(speeds)
         if "rudder_command" in self.commands:
             self.commands["rudder_command"][ids] = 0.0
         self.heading_setpoint[ids] = 0.0
+        self._task_options = opts
         for i, rng in zip(ids, rngs, strict=True):
             self._reset_infos[int(i)].update(self._reset_task(int(i), rng))
         if "heading" in self.commands:
             self.commands["heading"][ids] = self.heading_setpoint[ids]
         self.sim.commands = {**self.sim.commands, **self.commands}
-        self.sim.reset(ids, nu=nu, wave_fields=fields)
+        self.sim.reset(ids, eta=eta, nu=nu, wave_fields=fields)
         self.episode_steps[ids] = 0
         self.capsized[ids] = False
         self._hist_t[ids] = np.nan
@@ -619,6 +689,54 @@ class ShipTask(BatchedTask, abc.ABC):
         self._record_history(ids)
         self._clean_observations()
         self._finish_observations(ids)
+
+    RESET_OPTIONS: tuple[str, ...] = (
+        "wave_height_m",
+        "wave_period_s",
+        "wave_heading_deg",
+        "initial_speed_mps",
+        "gm_m",
+        "roll_deg",
+        "roll_rate_dps",
+    )
+    """The keys of ``reset(options=...)`` every ship task accepts (:data:`RESET_OPTIONS_DOC`);
+    a subclass adds its own in :attr:`task_reset_options`."""
+
+    task_reset_options: tuple[str, ...] = ()
+    """The subclass's own reset options (validated by :meth:`_check_task_option`, read by its
+    :meth:`_reset_task` from ``self._task_options``)."""
+
+    def _check_reset_options(self, options: Mapping[str, Any] | None) -> dict[str, Any]:
+        """``reset(options=...)`` validated with the constructor's limits (module docstring
+        :data:`RESET_OPTIONS_DOC`): unknown keys, non-numbers and out-of-range values raise."""
+        accepted = self.RESET_OPTIONS + self.task_reset_options
+        opts = check_options(options, accepted)
+        out: dict[str, Any] = {}
+        for key, value in opts.items():
+            name = f"options[{key!r}]"
+            if key in ("wave_height_m", "wave_period_s", "wave_heading_deg"):
+                out[key] = value  # SeaSampler.check_options
+            elif key == "initial_speed_mps":
+                if "shaft_speed" not in self.commands:
+                    raise ValueError(f"{name} needs a ship with propulsion (a shaft speed)")
+                out[key] = check_real(
+                    name, value, low=SPEED_LIMITS[0], high=SPEED_LIMITS[1], unit="m/s"
+                )
+            elif key == "gm_m":
+                out[key] = check_real(name, value, low=GM_LIMITS[0], high=GM_LIMITS[1], unit="m")
+            elif key == "roll_deg":
+                out[key] = check_real(
+                    name, value, low=-90.0, high=90.0, unit="deg", low_open=True, high_open=True
+                )
+            elif key == "roll_rate_dps":
+                out[key] = check_real(name, value, low=-30.0, high=30.0, unit="deg/s")
+            else:
+                out[key] = self._check_task_option(key, value)
+        return out
+
+    def _check_task_option(self, key: str, value: Any) -> Any:
+        """A subclass's own reset option ``key`` validated (ValueError naming it)."""
+        raise ValueError(f"unknown reset option {key!r}")  # pragma: no cover - no such key
 
     def reset_info(self, ids: NDArray[np.int64]) -> Mapping[str, NDArray]:
         ids = np.asarray(ids, dtype=np.int64).reshape(-1)

@@ -70,6 +70,21 @@ so the force is continuous in ψ and a refresh changes it only by the O(Δψ²) 
 plain cache would jump by O(Δψ) and cap time-integration accuracy, as the convergence study
 showed). The folding of the phasors to O is exact at every evaluation (n complex exponentials).
 
+Heading coverage
+----------------
+The bilinear look-up wraps around the circle, so a database with only, e.g., 135° and 180°
+(mirrored to 225° for a symmetric hull) would silently interpolate a following sea from the
+head-sea data. The covered headings are the arcs between consecutive database headings (after
+mirroring) no wider than ``max_heading_gap_deg`` (default 90°). At construction, the relative
+headings βⱼ = χⱼ of the wave components (the ship starts heading north, ψ = 0) are checked
+against them: a component within ``heading_extrapolation_tolerance_deg`` (default 5°) of the
+covered arcs only warns; beyond it ``heading_extrapolation="raise"`` (default) refuses with a
+:class:`ValueError` naming the requested heading and the covered range, ``"warn"`` warns
+(:class:`UserWarning`) and ``"allow"`` accepts silently. A port–starboard symmetric database
+with 0–180° covers 180–360° by mirroring and is never flagged. The check cannot follow the
+ship's later heading changes (a course change in a partial database is the user's
+responsibility).
+
 Frame
 -----
 The force is in body axes about O, as in the database; the heading enters through β. The rotation
@@ -80,6 +95,7 @@ applied.
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Literal
 
 import numba as nb
@@ -97,6 +113,7 @@ __all__ = ["Diffraction"]
 
 Frequency = Literal["encounter", "wave"]
 AboveRange = Literal["zero", "raise"]
+HeadingExtrapolation = Literal["raise", "warn", "allow"]
 
 _TWO_PI = 2.0 * math.pi
 
@@ -166,6 +183,14 @@ class Diffraction(ForceModel):
         Heading change [deg] that triggers a recomputation of the cached X_D per component.
     above_range : {"zero", "raise"}
         Treatment of |ω'| > ω_max.
+    heading_extrapolation : {"raise", "warn", "allow"}
+        What to do when a wave component's relative heading lies outside the headings the
+        database covers by more than ``heading_extrapolation_tolerance_deg`` (module notes,
+        *Heading coverage*); within the tolerance it warns unless ``"allow"``.
+    heading_extrapolation_tolerance_deg : float
+        Angle [deg] outside the covered headings accepted with a warning.
+    max_heading_gap_deg : float
+        Widest gap [deg] between consecutive database headings that is still interpolated.
 
     Attributes
     ----------
@@ -190,6 +215,9 @@ class Diffraction(ForceModel):
         interpolation: str = "linear",
         heading_tolerance_deg: float = 0.5,
         above_range: AboveRange = "zero",
+        heading_extrapolation: HeadingExtrapolation = "raise",
+        heading_extrapolation_tolerance_deg: float = 5.0,
+        max_heading_gap_deg: float = 90.0,
     ) -> None:
         if not isinstance(database, xr.Dataset):
             raise ValueError(
@@ -215,6 +243,18 @@ class Diffraction(ForceModel):
                 f"heading_tolerance_deg={heading_tolerance_deg!r}; expected a finite angle ≥ 0 "
                 "[deg]"
             )
+        if heading_extrapolation not in ("raise", "warn", "allow"):
+            raise ValueError(
+                f"heading_extrapolation={heading_extrapolation!r}; expected 'raise', 'warn' or "
+                "'allow'"
+            )
+        for label, value, top in (
+            ("heading_extrapolation_tolerance_deg", heading_extrapolation_tolerance_deg, 360.0),
+            ("max_heading_gap_deg", max_heading_gap_deg, 360.0),
+        ):
+            v = float(value)
+            if not (math.isfinite(v) and 0.0 <= v <= top):
+                raise ValueError(f"{label}={value!r}; expected an angle in [0, {top:g}] [deg]")
         self.frequency: str = frequency
         self.above_range: str = above_range
         self.wave_field: WaveField = wave_field
@@ -240,6 +280,15 @@ class Diffraction(ForceModel):
             raise ValueError(f"wave_direction {beta} must hold ≥ 2 distinct headings")
         self.omega: NDArray[np.float64] = omega
         self.wave_direction: NDArray[np.float64] = beta
+        self.covered_headings: list[tuple[float, float]] = covered_heading_arcs(
+            beta, math.radians(float(max_heading_gap_deg))
+        )
+        self._check_heading_coverage(
+            wave_field,
+            heading_extrapolation,
+            math.radians(float(heading_extrapolation_tolerance_deg)),
+            database,
+        )
         # periodic extension in β: one heading below 0 and one above 2π
         self._beta = np.concatenate([[beta[-1] - _TWO_PI], beta, [beta[0] + _TWO_PI]])
         self._table = np.concatenate([x[:, -1:], x, x[:, :1]], axis=1)
@@ -255,6 +304,39 @@ class Diffraction(ForceModel):
         self.n_above_range: int = 0
         self.omega_lookup: NDArray[np.float64] = np.zeros(self._n)
         self.beta_lookup: NDArray[np.float64] = np.zeros(self._n)
+
+    def _check_heading_coverage(
+        self, wave_field: WaveField, mode: str, tolerance: float, database: xr.Dataset
+    ) -> None:
+        """Refuse or warn when the field's relative headings (ψ = 0) leave the covered arcs."""
+        if mode == "allow" or wave_field.n_components == 0:
+            return
+        amplitude = np.asarray(wave_field.amplitude, dtype=float)
+        chi = np.mod(np.asarray(wave_field.direction, dtype=float), _TWO_PI)[amplitude > 0.0]
+        if chi.size == 0:
+            return
+        distance = heading_distance_to_arcs(chi, self.covered_headings)
+        worst = int(np.argmax(distance))
+        if distance[worst] <= 1e-9:
+            return
+        requested = math.degrees(float(chi[worst]))
+        covered = describe_arcs(self.covered_headings)
+        own = np.mod(database["wave_direction"].values.astype(float), _TWO_PI)
+        given = ", ".join(f"{math.degrees(float(b)):.6g}" for b in own)
+        mirrored = ", mirrored port-starboard" if self.wave_direction.size > own.size else ""
+        message = (
+            f"wave heading {requested:.6g} deg (relative to the ship heading north) lies "
+            f"{math.degrees(float(distance[worst])):.3g} deg outside the headings the "
+            f"diffraction database covers ({covered}; database headings {given} deg"
+            f"{mirrored}): its diffraction force would be extrapolated"
+        )
+        if mode == "raise" and distance[worst] > tolerance:
+            raise ValueError(
+                f"{message} beyond the tolerance of {math.degrees(tolerance):.3g} deg. Use a "
+                "database computed at this heading, or pass heading_extrapolation='warn' or "
+                "'allow' to accept the extrapolation"
+            )
+        warnings.warn(message, UserWarning, stacklevel=3)
 
     @staticmethod
     def _full_circle(ds: xr.Dataset) -> xr.Dataset:
@@ -428,6 +510,58 @@ class Diffraction(ForceModel):
         dpsi = wrap_angle_scalar(psi - self._psi_ref)
         force = (folded.conj() @ (self._xd + dpsi * self._dxd)).real
         return force, empty
+
+
+def covered_heading_arcs(beta: np.ndarray, max_gap: float) -> list[tuple[float, float]]:
+    """Arcs (start, end) [rad], start in [0, 2π), end > start, of the headings a database covers.
+
+    ``beta``: sorted distinct headings in [0, 2π) [rad]. Consecutive headings (cyclically) whose
+    gap is at most ``max_gap`` [rad] are joined; a lone heading is a zero-width arc. The whole
+    circle is ``[(0, 2π)]``.
+    """
+    b = np.sort(np.mod(np.asarray(beta, dtype=float), _TWO_PI))
+    n = b.size
+    if n == 0:
+        return []
+    gaps = np.diff(np.concatenate([b, [b[0] + _TWO_PI]]))  # gap after heading i
+    open_gaps = np.flatnonzero(gaps > max_gap * (1.0 + 1e-9) + 1e-12)
+    if open_gaps.size == 0:
+        return [(0.0, _TWO_PI)]
+    arcs: list[tuple[float, float]] = []
+    for k in range(open_gaps.size):
+        first = (open_gaps[k - 1] + 1) % n  # heading after the previous open gap
+        last = open_gaps[k]
+        start = float(b[first])
+        end = float(b[last]) if last >= first else float(b[last]) + _TWO_PI
+        arcs.append((start, end))
+    return arcs
+
+
+def heading_distance_to_arcs(beta: np.ndarray, arcs: list[tuple[float, float]]) -> np.ndarray:
+    """Angular distance [rad] of each heading ``beta`` [rad] to the nearest of ``arcs``."""
+    b = np.mod(np.asarray(beta, dtype=float), _TWO_PI)
+    if not arcs:
+        return np.full(b.shape, math.pi)
+    out = np.full(b.shape, np.inf)
+    for start, end in arcs:
+        rel = np.mod(b - start, _TWO_PI)  # position after the arc's start
+        inside = rel <= (end - start) + 1e-12
+        to_end = rel - (end - start)
+        to_start = _TWO_PI - rel
+        d = np.where(inside, 0.0, np.minimum(to_end, to_start))
+        out = np.minimum(out, d)
+    return out
+
+
+def describe_arcs(arcs: list[tuple[float, float]]) -> str:
+    """Human-readable covered headings, e.g. ``'135-225 deg'``."""
+    if arcs == [(0.0, _TWO_PI)]:
+        return "all headings"
+    parts = []
+    for start, end in arcs:
+        a, b = math.degrees(start), math.degrees(end) % 360.0
+        parts.append(f"{a:.6g} deg" if end - start <= 1e-12 else f"{a:.6g}-{b:.6g} deg")
+    return "covered: " + ", ".join(parts)
 
 
 # =============================================================================================

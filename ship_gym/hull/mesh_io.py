@@ -174,8 +174,11 @@ def read_mesh(
 
     Raises
     ------
+    FileNotFoundError, IsADirectoryError
+        The path does not exist or is a directory.
     MeshFileError
-        The file is empty, truncated, has inconsistent counts or non-finite coordinates.
+        The file is empty, truncated, has inconsistent counts or non-finite coordinates (the
+        message names the file and the format expected).
     MeshError
         The mesh fails its quality check (message names the file and hints at the cause).
     """
@@ -189,20 +192,30 @@ def read_mesh(
     if shift.shape != (3,) or not np.all(np.isfinite(shift)):
         raise ValueError(f"translate must be 3 finite numbers [m], got {translate!r}")
 
+    expected = f"expected a {MESH_FORMATS[fmt]}"
+    if path.is_dir():
+        raise IsADirectoryError(f"mesh file {str(path)!r} is a directory; {expected}")
+    if not path.is_file():
+        raise FileNotFoundError(f"mesh file {str(path)!r} not found; {expected}")
     data = path.read_bytes()
     if not data.strip():
-        raise MeshFileError(f"{path}: file is empty")
-    raw = _READERS[fmt](data, path)
+        raise MeshFileError(f"{path}: file is empty; {expected}")
+    try:
+        raw = _READERS[fmt](data, path)
+    except MeshFileError as exc:
+        raise MeshFileError(f"{exc} ({expected})") from exc
+    except (ValueError, IndexError, struct.error) as exc:  # a reader's unforeseen case
+        raise MeshFileError(f"{path}: cannot read the file ({exc}); {expected}") from exc
 
     vertices = np.asarray(raw.vertices, dtype=float).reshape(-1, 3)
     n_polygons = len(raw.polygons)
     if n_polygons == 0:
-        raise MeshFileError(f"{path}: file contains no panels")
+        raise MeshFileError(f"{path}: file contains no panels; {expected}")
     bad = np.flatnonzero(~np.all(np.isfinite(vertices), axis=1))
     if bad.size:
         raise MeshFileError(
             f"{path}: {bad.size} vertex(es) with non-finite (nan/inf) coordinates; first: "
-            f"{raw.label(int(bad[0]))} = {vertices[bad[0]].tolist()}"
+            f"{raw.label(int(bad[0]))} = {vertices[bad[0]].tolist()} ({expected})"
         )
     polygons: np.ndarray | list[list[int]] = raw.polygons
     for axis in raw.mirror:
@@ -220,7 +233,9 @@ def read_mesh(
         merge_tolerance=merge_tolerance,
     )
     if mesh.n_faces == 0:
-        raise MeshFileError(f"{path}: all {n_polygons} panel(s) are degenerate (zero area)")
+        raise MeshFileError(
+            f"{path}: all {n_polygons} panel(s) are degenerate (zero area); {expected}"
+        )
 
     if check or fix_orientation:
         mesh = _orient(

@@ -25,7 +25,7 @@ What is checked (forward-speed-free, deep-water database in our body frame):
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 import xarray as xr
@@ -50,6 +50,10 @@ _OPTIONAL = {
     "diffraction_force": ("omega", "wave_direction", "influenced_dof"),
     "Froude_Krylov_force": ("omega", "wave_direction", "influenced_dof"),
 }
+_DATA_REQUIRED = ("added_mass", "radiation_damping")
+"""Variables required at ``level="data"`` (the others are checked only where present)."""
+
+Level = Literal["full", "data"]
 
 
 def _negligible(diag_scale: np.ndarray, rel: float = 1e-6) -> np.ndarray:
@@ -90,6 +94,7 @@ def validate_database(
     min_frequencies: int = 10,
     min_omega_ratio: float = 1.5,
     require_infinite: bool = True,
+    level: Level = "full",
 ) -> dict[str, Any]:
     """Validate a hydrodynamic database; raise :class:`DatabaseError` listing every problem.
 
@@ -107,6 +112,14 @@ def validate_database(
         ω_max must reach this multiple of the highest heave/roll/pitch natural frequency.
     require_infinite : bool
         Require the ω = ∞ entry (A(∞)), needed by the retardation kernels.
+    level : {"full", "data"}
+        ``"full"`` (default): everything above, i.e. a database the time-domain model can use.
+        ``"data"``: only that the data present are sound (schema of ``added_mass`` and
+        ``radiation_damping`` and of the other variables where present, DOF labels, frame,
+        finite values, damping sign, B(0) = 0, symmetry, ω increasing); completeness (wave
+        forces, hydrostatics, inertia, A(∞), number and range of frequencies, C33/C44/C55 > 0)
+        is not required. :func:`ship_gym.hydro.database.open_database` uses it for foreign
+        (capytaine) files, which may hold a partial BEM run.
 
     Returns
     -------
@@ -125,13 +138,16 @@ def validate_database(
     """
     if not isinstance(ds, xr.Dataset):
         raise DatabaseError(f"expected an xarray.Dataset, got {type(ds).__name__}")
+    if level not in ("full", "data"):
+        raise ValueError(f"level must be 'full' or 'data', got {level!r}")
+    full = level == "full"
     problems: list[str] = []
     report: dict[str, Any] = {}
 
     # --- schema -----------------------------------------------------------------------------
     for name, dims in {**_REQUIRED, **_OPTIONAL}.items():
         if name not in ds:
-            if name in _REQUIRED:
+            if name in _REQUIRED and (full or name in _DATA_REQUIRED):
                 problems.append(f"missing required variable {name!r} with dims {dims}")
             continue
         if set(ds[name].dims) != set(dims):
@@ -166,7 +182,11 @@ def validate_database(
         omega_max=float(w.max()) if w.size else float("nan"),
         has_zero_frequency=has_zero,
         has_infinite_frequency=has_inf,
-        wave_directions_deg=np.rad2deg(ds["wave_direction"].values).round(6).tolist(),
+        wave_directions_deg=(
+            np.rad2deg(ds["wave_direction"].values).round(6).tolist()
+            if "wave_direction" in ds.coords
+            else []
+        ),
     )
 
     # --- frequency axis ---------------------------------------------------------------------
@@ -174,11 +194,11 @@ def validate_database(
         problems.append(f"omega holds NaN or negative values: {omega}")
     elif np.any(np.diff(omega) <= 0.0):
         problems.append("omega is not strictly increasing")
-    if finite.sum() < min_frequencies:
+    if full and finite.sum() < min_frequencies:
         problems.append(
             f"only {int(finite.sum())} finite frequencies; expected at least {min_frequencies}"
         )
-    if require_infinite and not has_inf:
+    if full and require_infinite and not has_inf:
         problems.append("A(inf) is missing: no omega = inf entry (needed by the kernels)")
 
     # --- finite values ----------------------------------------------------------------------
@@ -202,7 +222,7 @@ def validate_database(
                 f"at omega = {w[k[0]]:.4g} rad/s"
             )
     for name in ("hydrostatic_stiffness", "inertia_matrix"):
-        if not np.all(np.isfinite(ds[name].values)):
+        if name in ds and not np.all(np.isfinite(ds[name].values)):
             problems.append(f"{name} has non-finite values")
 
     # --- damping ----------------------------------------------------------------------------
@@ -255,6 +275,11 @@ def validate_database(
                 f"for ({pair[0]}, {pair[1]}) (tolerance {rtol_symmetry}); a zero-speed database "
                 "must be symmetric"
             )
+
+    if not full:
+        if problems:
+            raise DatabaseError("invalid hydrodynamic database:\n  - " + "\n  - ".join(problems))
+        return report
 
     # --- hydrostatics and inertia -------------------------------------------------------------
     c = ds["hydrostatic_stiffness"].sel(sel).values.astype(float)

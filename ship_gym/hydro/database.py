@@ -51,15 +51,17 @@ from __future__ import annotations
 
 import importlib.util
 import os
+import warnings
 from importlib import resources
 from pathlib import Path
-from typing import Literal, NamedTuple
+from typing import Any, Literal, NamedTuple
 
 import numpy as np
 import xarray as xr
 
 from ship_gym.conventions import BODY_FRAME, DOF_NAMES
 from ship_gym.hydro import frames
+from ship_gym.hydro.checks import DatabaseError, validate_database
 from ship_gym.io_utils import atomic_write
 
 FORMAT_VERSION: int = 1
@@ -68,6 +70,31 @@ FORMAT_VERSION: int = 1
 _COMPLEX_TAG = "complex_part"
 _DOF_DIMS = ("influenced_dof", "radiating_dof")
 _ATTR_SCALARS = (str, int, float, np.integer, np.floating)
+
+
+EXPECTED_DATABASE: str = (
+    "a hydrodynamic database written by ship-gym hydro / save_database or a capytaine NetCDF "
+    "export: variables added_mass, radiation_damping (omega, influenced_dof, radiating_dof), "
+    "excitation_force (omega, wave_direction, influenced_dof), hydrostatic_stiffness and "
+    "inertia_matrix (influenced_dof, radiating_dof)"
+)
+"""What :func:`open_database` expects, quoted in its error messages."""
+
+_NETCDF_MAGIC = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02", b"CDF\x05")
+
+ValidateLevel = Literal["auto", "full", "data", "none"]
+
+
+class DatabaseFileError(DatabaseError):
+    """A database file cannot be read or is not a sound hydrodynamic database.
+
+    A :class:`ValueError` (via :class:`~ship_gym.hydro.checks.DatabaseError`); the message names
+    the file, the problem and what was expected.
+    """
+
+
+# (resolved path, mtime_ns, size, level, options) of files that passed validation
+_VALIDATED: set[tuple[Any, ...]] = set()
 
 
 # ------------------------------------------------------------------------------ save / open
@@ -184,18 +211,128 @@ def _merge_capytaine(ds: xr.Dataset) -> xr.Dataset:
     return out.drop_vars("complex")
 
 
-def open_database(path: str | os.PathLike) -> xr.Dataset:
-    """Read a database written by :func:`save_database`, or a capytaine NetCDF export.
+def _read_netcdf(path: Path) -> xr.Dataset:
+    """The file's raw Dataset, loaded and closed; :class:`DatabaseFileError` for anything that
+    is not a readable NetCDF file."""
+    where = f"hydrodynamic database file {str(path)!r}"
+    size = path.stat().st_size
+    if size == 0:
+        raise DatabaseFileError(f"{where} is empty (0 bytes); expected {EXPECTED_DATABASE}")
+    with open(path, "rb") as fh:
+        head = fh.read(8)
+    if not head.startswith(_NETCDF_MAGIC):
+        text = head.decode("ascii", errors="replace")
+        raise DatabaseFileError(
+            f"{where} is not a NetCDF file (it starts with {text!r}, not the HDF5/NetCDF "
+            f"signature); expected {EXPECTED_DATABASE}"
+        )
+    try:
+        with xr.open_dataset(path) as f:
+            return f.load()
+    except Exception as exc:  # any backend (netCDF4, h5netcdf, scipy) failure
+        reason = " ".join(str(exc).split()) or type(exc).__name__
+        raise DatabaseFileError(
+            f"{where} cannot be read ({size} bytes; truncated or corrupted?): "
+            f"{type(exc).__name__}: {reason}; expected {EXPECTED_DATABASE}"
+        ) from exc
+
+
+def _check_layout(ds: xr.Dataset, path: Path) -> None:
+    """Refuse a NetCDF file that is not a database at all (e.g. a simulation output)."""
+    names = {str(v) for v in ds.variables}
+    merged = {n[: -len("_real")] if n.endswith("_real") else n for n in names}
+    missing = [v for v in ("added_mass", "radiation_damping") if v not in merged]
+    if missing:
+        found = sorted(str(v) for v in ds.data_vars)
+        shown = ", ".join(found[:12]) + (", …" if len(found) > 12 else "") or "none"
+        hint = ""
+        if "eta" in names or "time" in ds.dims or "t" in ds.dims:
+            hint = " (this looks like a simulation output, e.g. from ship-gym simulate --output)"
+        raise DatabaseFileError(
+            f"hydrodynamic database file {str(path)!r} has no variable "
+            f"{' or '.join(repr(m) for m in missing)}{hint}; its variables are: {shown}. "
+            f"Expected {EXPECTED_DATABASE}"
+        )
+
+
+def _validate_opened(
+    ds: xr.Dataset, path: Path, level: str, ours: bool, checks: dict[str, Any]
+) -> None:
+    if level == "none":
+        return
+    chosen = ("full" if ours else "data") if level == "auto" else level
+    st = path.stat()
+    key = (
+        str(path.resolve()),
+        st.st_mtime_ns,
+        st.st_size,
+        chosen,
+        tuple(sorted(checks.items())),
+    )
+    if key in _VALIDATED:
+        return
+    # frequency coverage (how many frequencies, ω_max against the natural frequencies) is a
+    # recommendation, not a defect of the data: it warns unless the caller set its limits
+    relaxed = {"min_frequencies": 2, "min_omega_ratio": 0.0, **checks}
+    try:
+        validate_database(ds, level=chosen, **relaxed)  # type: ignore[arg-type]
+    except DatabaseError as exc:
+        detail = str(exc).split(":", 1)[-1]
+        raise DatabaseFileError(
+            f"hydrodynamic database file {str(path)!r} is invalid:{detail}\n"
+            "(open_database(..., validate='none') skips this check)"
+        ) from exc
+    if chosen == "full" or (level == "auto" and not ours):
+        try:
+            validate_database(ds, level="full", **checks)
+        except DatabaseError as exc:
+            detail = str(exc).split(":", 1)[-1]
+            what = (
+                "is usable but below the recommended frequency coverage"
+                if chosen == "full"
+                else "(not written by ship_gym) is sound but incomplete for the time-domain model"
+            )
+            warnings.warn(
+                f"hydrodynamic database file {str(path)!r} {what}:{detail}",
+                UserWarning,
+                stacklevel=3,
+            )
+    _VALIDATED.add(key)
+
+
+def open_database(
+    path: str | os.PathLike, *, validate: ValidateLevel = "auto", **checks: Any
+) -> xr.Dataset:
+    """Read and validate a database written by :func:`save_database`, or a capytaine export.
 
     The file is read into memory and closed. capytaine-format files (split along a ``complex``
     dimension) are merged back to complex values and, unless ``attrs["frame"]`` says they are
     already in ship_gym's body frame, converted from capytaine's z-up frame with
     :func:`ship_gym.hydro.frames.dataset_from_capytaine`.
 
+    The database is then checked by :func:`ship_gym.hydro.checks.validate_database` (once per
+    file version: the result is cached by path, modification time and size), so that NaN or
+    negative damping, asymmetric radiation matrices, a missing A(∞)… are reported here, naming
+    the file, instead of as a diverging simulation later. The frequency coverage (at least
+    ``min_frequencies`` frequencies, ω_max ≥ ``min_omega_ratio`` × the natural frequencies) is
+    a recommendation: falling short of it warns (:class:`UserWarning`), unless these limits are
+    passed explicitly, which makes them binding; fewer than 2 finite frequencies is refused.
+
     Parameters
     ----------
     path : str or os.PathLike
         NetCDF file.
+    validate : {"auto", "full", "data", "none"}
+        ``"full"``: the database must be usable by the time-domain model (every check of
+        :func:`~ship_gym.hydro.checks.validate_database`); ``"data"``: the data present must be
+        sound (NaN, damping sign, symmetry…), completeness is not required; ``"auto"``
+        (default): ``"full"`` for files written by :func:`save_database` (``ship-gym hydro``),
+        ``"data"`` for foreign (capytaine) files, with a :class:`UserWarning` listing what the
+        time-domain model would miss; ``"none"``: no check.
+    **checks
+        Tolerances passed to :func:`~ship_gym.hydro.checks.validate_database`
+        (``rtol_symmetry``, ``damping_tolerance``, ``min_frequencies``, ``min_omega_ratio``,
+        ``require_infinite``).
 
     Returns
     -------
@@ -206,28 +343,60 @@ def open_database(path: str | os.PathLike) -> xr.Dataset:
     ------
     FileNotFoundError
         If ``path`` does not exist.
-    ValueError
-        If the file declares a frame that is neither ours nor capytaine's.
+    IsADirectoryError
+        If ``path`` is a directory.
+    DatabaseFileError
+        A :class:`ValueError`: the file is empty, not NetCDF, truncated or corrupted, not a
+        hydrodynamic database (e.g. a simulation output), declares a frame that is neither
+        ours nor capytaine's, or fails validation. The message names the file and the problem.
     """
+    if validate not in ("auto", "full", "data", "none"):
+        raise ValueError(f"validate must be 'auto', 'full', 'data' or 'none', got {validate!r}")
+    unknown = set(checks) - {
+        "rtol_symmetry",
+        "damping_tolerance",
+        "min_frequencies",
+        "min_omega_ratio",
+        "require_infinite",
+    }
+    if unknown:
+        raise TypeError(f"open_database() got unexpected keyword argument(s) {sorted(unknown)}")
     path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"hydrodynamic database file {str(path)!r} not found")
-    with xr.open_dataset(path) as f:
-        ds = f.load()
-    ds.attrs.pop("ship_gym_format", None)
-    ds = _merge_capytaine(ds) if "complex" in ds.dims else _merge_ours(ds)
-    for name in list(ds.coords):
-        if ds[name].dtype.kind in "OSU":
-            ds = ds.assign_coords({name: np.asarray(ds[name].values, dtype=str)})
-    frame = ds.attrs.get("frame")
-    if frame == BODY_FRAME:
-        return ds
-    if frame not in (None, frames.CAPYTAINE_FRAME):
-        raise ValueError(
-            f"{str(path)!r}: attrs['frame'] = {frame!r} is neither the ship_gym body frame nor "
-            "capytaine's frame; cannot tell how to convert it"
+    if path.is_dir():
+        raise IsADirectoryError(
+            f"hydrodynamic database path {str(path)!r} is a directory; expected a NetCDF file "
+            f"(.nc): {EXPECTED_DATABASE}"
         )
-    return frames.dataset_from_capytaine(ds)
+    if not path.is_file():
+        raise FileNotFoundError(
+            f"hydrodynamic database file {str(path)!r} not found; expected {EXPECTED_DATABASE}"
+        )
+    ds = _read_netcdf(path)
+    _check_layout(ds, path)
+    ours = "ship_gym_format" in ds.attrs
+    ds.attrs.pop("ship_gym_format", None)
+    try:
+        ds = _merge_capytaine(ds) if "complex" in ds.dims else _merge_ours(ds)
+        for name in list(ds.coords):
+            if ds[name].dtype.kind in "OSU":
+                ds = ds.assign_coords({name: np.asarray(ds[name].values, dtype=str)})
+        frame = ds.attrs.get("frame")
+        if frame not in (BODY_FRAME, None, frames.CAPYTAINE_FRAME):
+            raise DatabaseFileError(
+                f"{str(path)!r}: attrs['frame'] = {frame!r} is neither the ship_gym body frame "
+                "nor capytaine's frame; cannot tell how to convert it"
+            )
+        if frame != BODY_FRAME:
+            ds = frames.dataset_from_capytaine(ds)
+    except DatabaseFileError:
+        raise
+    except (ValueError, KeyError, TypeError, IndexError) as exc:
+        raise DatabaseFileError(
+            f"hydrodynamic database file {str(path)!r} has an unexpected layout "
+            f"({type(exc).__name__}: {exc}); expected {EXPECTED_DATABASE}"
+        ) from exc
+    _validate_opened(ds, path, validate, ours, checks)
+    return ds
 
 
 def bundled_database_path(name: str) -> Path:
@@ -235,7 +404,9 @@ def bundled_database_path(name: str) -> Path:
     return Path(str(resources.files("ship_gym").joinpath("data", name, f"{name}_hydro.nc")))
 
 
-def load_database(name_or_path: str | os.PathLike) -> xr.Dataset:
+def load_database(
+    name_or_path: str | os.PathLike, *, validate: ValidateLevel = "auto", **checks: Any
+) -> xr.Dataset:
     """Load a bundled database by name (e.g. ``"s175"``) or any database file by path.
 
     Parameters
@@ -243,12 +414,21 @@ def load_database(name_or_path: str | os.PathLike) -> xr.Dataset:
     name_or_path : str or os.PathLike
         A bare name without directory or ``.nc`` suffix selects the bundled file
         ``ship_gym/data/<name>/<name>_hydro.nc``; anything else is a path.
+    validate, **checks
+        As :func:`open_database` (validated on opening by default).
 
     Raises
     ------
     FileNotFoundError
         If the file does not exist (for a bundled name: it has not been built yet).
+    DatabaseFileError
+        As :func:`open_database`.
     """
+    if not isinstance(name_or_path, str | os.PathLike):
+        raise TypeError(
+            f"database must be a bundled name (e.g. 's175') or a path to a NetCDF file, got "
+            f"{type(name_or_path).__name__} {name_or_path!r}"
+        )
     text = os.fspath(name_or_path)
     is_name = (
         isinstance(name_or_path, str)
@@ -258,7 +438,7 @@ def load_database(name_or_path: str | os.PathLike) -> xr.Dataset:
         and not Path(text).exists()
     )
     if not is_name:
-        return open_database(text)
+        return open_database(text, validate=validate, **checks)
     if not text or not text.replace("_", "").replace("-", "").isalnum():
         raise ValueError(f"invalid bundled database name {text!r}")
     path = bundled_database_path(text)
@@ -268,7 +448,7 @@ def load_database(name_or_path: str | os.PathLike) -> xr.Dataset:
             "It is built by the database script in scripts/ (compute_hull_database + "
             "save_database); run it first, or pass a path to a database file"
         )
-    return open_database(path)
+    return open_database(path, validate=validate, **checks)
 
 
 # ------------------------------------------------------------------------------ accessors

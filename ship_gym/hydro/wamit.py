@@ -39,38 +39,86 @@ from ship_gym.hydro import frames
 
 _ROTATION = np.array([False, False, False, True, True, True])
 
+EXPECTED: dict[int, str] = {
+    4: "a WAMIT .1 file (text rows 'PER I J A B'; PER = -1 and 0 rows hold A only)",
+    7: "a WAMIT .3 file (text rows 'PER BETA I Mod Pha Re Im')",
+    3: "a WAMIT .hst file (text rows 'I J C')",
+}
+"""What each reader expects, by its minimum number of columns (quoted in error messages)."""
+
+
+class WamitFileError(ValueError):
+    """A WAMIT numeric file is empty, binary, truncated or malformed; the message names it."""
+
 
 def _read_rows(path: Path, min_cols: int) -> list[list[float]]:
     """Numeric rows of a WAMIT text file (Fortran 'D' exponents accepted, headers skipped)."""
+    expected = EXPECTED.get(min_cols, f"a WAMIT text file with {min_cols} columns")
+    where = f"WAMIT file {str(path)!r}"
+    if path.is_dir():
+        raise IsADirectoryError(f"{where} is a directory; expected {expected}")
+    if not path.is_file():
+        raise FileNotFoundError(f"{where} not found; expected {expected}")
+    data = path.read_bytes()
+    if not data.strip():
+        raise WamitFileError(f"{where} is empty; expected {expected}")
+    sample = data[:4096]
+    printable = sum(32 <= c < 127 or c in (9, 10, 13) for c in sample)
+    if b"\x00" in sample or printable < 0.95 * len(sample):
+        raise WamitFileError(f"{where} is not a text file (binary content); expected {expected}")
     rows: list[list[float]] = []
-    with open(path, encoding="ascii", errors="replace") as f:
-        for number, line in enumerate(f, start=1):
-            tokens = line.replace("D", "E").replace("d", "e").split()
-            if not tokens:
-                continue
-            try:
-                values = [float(t) for t in tokens]
-            except ValueError:
-                if rows:
-                    raise ValueError(
-                        f"{str(path)!r} line {number}: cannot read numbers from {line.strip()!r}"
-                    ) from None
-                continue  # a header before the data
-            if len(values) < min_cols:
-                raise ValueError(
-                    f"{str(path)!r} line {number}: expected at least {min_cols} columns, got "
-                    f"{len(values)}: {line.strip()!r}"
-                )
-            rows.append(values)
+    text = data.decode("ascii", errors="replace")
+    for number, line in enumerate(text.splitlines(), start=1):
+        tokens = line.replace("D", "E").replace("d", "e").split()
+        if not tokens:
+            continue
+        try:
+            values = [float(t) for t in tokens]
+        except ValueError:
+            if rows:
+                raise WamitFileError(
+                    f"{str(path)!r} line {number}: cannot read numbers from {line.strip()!r}; "
+                    f"expected {expected}"
+                ) from None
+            continue  # a header before the data
+        if len(values) < min_cols:
+            raise WamitFileError(
+                f"{str(path)!r} line {number}: expected at least {min_cols} columns, got "
+                f"{len(values)}: {line.strip()!r} (file truncated?); expected {expected}"
+            )
+        if not all(np.isfinite(values)):
+            raise WamitFileError(
+                f"{str(path)!r} line {number}: non-finite value in {line.strip()!r}; expected "
+                f"{expected}"
+            )
+        rows.append(values)
     if not rows:
-        raise ValueError(f"{str(path)!r} holds no numeric data")
+        raise WamitFileError(f"{str(path)!r} holds no numeric data; expected {expected}")
     return rows
+
+
+def _check_complete(groups: dict, path: Path, what: str, label: str, expected: str) -> None:
+    """Every group (frequency, or frequency and heading) must hold the same entries: a file cut
+    at a line boundary leaves the last group short."""
+    if len(groups) < 2:
+        return
+    union: set = set().union(*groups.values())
+    for key, entries in groups.items():
+        if set(entries) != union:
+            missing = sorted(union - set(entries))
+            first = missing[0]
+            shown = tuple(x + 1 for x in first) if isinstance(first, tuple) else first + 1
+            raise WamitFileError(
+                f"{str(path)!r}: {label} {key} lack {len(missing)} of the {len(union)} {what} "
+                f"present elsewhere in the file (first missing: {shown}; file truncated?); "
+                f"expected {expected}"
+            )
 
 
 def _dof_index(value: float, path: Path) -> int:
     i = round(value)
     if i != value or not 1 <= i <= 6:
-        raise ValueError(
+        raise WamitFileError(
             f"{str(path)!r}: mode index {value!r} is not in 1..6; only single rigid bodies are "
             "supported"
         )
@@ -86,11 +134,11 @@ def _omega_from_first_column(x: float, period_column: str, path: Path) -> float:
     if period_column == "period":
         if x < 0.0:
             if x != -1.0:
-                raise ValueError(f"{str(path)!r}: negative period {x!r}; only -1 (omega = 0)")
+                raise WamitFileError(f"{str(path)!r}: negative period {x!r}; only -1 (omega = 0)")
             return 0.0
         return np.inf if x == 0.0 else 2.0 * np.pi / x
     if not (np.isfinite(x) and x > 0.0):
-        raise ValueError(
+        raise WamitFileError(
             f"{str(path)!r}: frequency {x!r} rad/s must be > 0 with period_column='omega' (the "
             "zero/infinite limits are only recognised as PER = -1 / 0 with period_column="
             "'period')"
@@ -135,11 +183,17 @@ def read_wamit_1(
         i, j = _dof_index(r[1], path), _dof_index(r[2], path)
         if np.isfinite(w) and w > 0.0:
             if len(r) < 5:
-                raise ValueError(f"{str(path)!r}: finite period {r[0]!r} without damping column")
+                raise WamitFileError(
+                    f"{str(path)!r}: finite period {r[0]!r} without damping column"
+                )
             b = r[4]
         else:
             b = 0.0
         entries.setdefault(w, {})[(i, j)] = (r[3], b)
+    finite_entries = {
+        f"omega = {w:.6g} rad/s": e for w, e in entries.items() if np.isfinite(w) and w > 0.0
+    }
+    _check_complete(finite_entries, path, "(I, J) entries", "the rows at", EXPECTED[4])
     omega = np.array(sorted(entries))
     a = np.zeros((len(omega), 6, 6))
     bb = np.zeros_like(a)
@@ -178,8 +232,12 @@ def read_wamit_3(
     for r in rows:
         w = _omega_from_first_column(r[0], period_column, path)
         if not (np.isfinite(w) and w > 0.0):
-            raise ValueError(f"{str(path)!r}: excitation at period {r[0]!r} is not defined")
+            raise WamitFileError(f"{str(path)!r}: excitation at period {r[0]!r} is not defined")
         data.append((w, r[1], _dof_index(r[2], path), complex(r[5], r[6])))
+    groups: dict[str, set] = {}
+    for w, beta_value, i, _ in data:
+        groups.setdefault(f"omega = {w:.6g} rad/s, BETA = {beta_value:.6g} deg", set()).add(i)
+    _check_complete(groups, path, "modes I", "the rows at", EXPECTED[7])
     omega = np.array(sorted({d[0] for d in data}))
     beta = np.array(sorted({d[1] for d in data}))
     force = np.full((len(omega), len(beta), 6), np.nan + 0j)
@@ -268,9 +326,10 @@ def read_wamit(
     Raises
     ------
     ValueError
-        For bad parameters or malformed files.
+        For bad parameters; :class:`WamitFileError` (a ValueError naming the file and the
+        format expected) for empty, binary, truncated or malformed files.
     FileNotFoundError
-        If a requested file does not exist.
+        If a requested file does not exist (:class:`IsADirectoryError` for a directory).
     """
     for label, value in (("rho", rho), ("g", g), ("ulen", ulen)):
         if not (np.isfinite(value) and value > 0.0):
@@ -284,9 +343,15 @@ def read_wamit(
             file_hst = f"{base}.hst"
     if file_1 is None:
         raise ValueError("read_wamit needs a prefix or file_1 (the .1 added-mass/damping file)")
-    for f in (file_1, file_3, file_hst):
+    for f, minimum in ((file_1, 4), (file_3, 7), (file_hst, 3)):
+        if f is not None and Path(f).is_dir():
+            raise IsADirectoryError(
+                f"WAMIT file {os.fspath(f)!r} is a directory; expected {EXPECTED[minimum]}"
+            )
         if f is not None and not Path(f).is_file():
-            raise FileNotFoundError(f"WAMIT file {os.fspath(f)!r} not found")
+            raise FileNotFoundError(
+                f"WAMIT file {os.fspath(f)!r} not found; expected {EXPECTED[minimum]}"
+            )
 
     w1, a, b = read_wamit_1(file_1, rho=rho, ulen=ulen, period_column=period_column)
     if file_3 is not None:

@@ -23,14 +23,42 @@ from ship_gym.kinematics import encounter_frequency
 from ship_gym.waves.spectra import frequency_range, jonswap, pierson_moskowitz, spreading_cos2s
 
 __all__ = [
+    "DEFAULT_HEADING",
     "MAX_STEEPNESS",
     "IrregularSea",
     "RegularWave",
     "encounter_frequency",
+    "heading_is_set",
     "omega_to_wavelength",
     "wavelength_to_omega",
     "wavenumber",
 ]
+
+
+class _DefaultHeading(float):
+    """The float 0.0 that marks a sea state whose ``heading`` was left at its default.
+
+    It behaves as 0.0 everywhere (arithmetic, comparison, hashing, NumPy); only
+    :func:`heading_is_set` tells it apart, so that :func:`ship_gym.engine.ship.wave_field_for`
+    can refuse a sea whose explicit heading contradicts its ``wave_heading`` argument.
+    """
+
+    def __repr__(self) -> str:
+        return "0.0"
+
+    def __reduce__(self) -> tuple:
+        return (_DefaultHeading, (0.0,))
+
+
+DEFAULT_HEADING: float = _DefaultHeading(0.0)
+"""Default ``heading`` of :class:`RegularWave` and :class:`IrregularSea` (χ = 0, waves travel
+north), distinguishable from an explicit ``heading=0.0`` by :func:`heading_is_set`."""
+
+
+def heading_is_set(sea: RegularWave | IrregularSea) -> bool:
+    """Whether ``sea.heading`` was given explicitly (not left at :data:`DEFAULT_HEADING`)."""
+    return not isinstance(sea.heading, _DefaultHeading)
+
 
 MAX_STEEPNESS = 1.0 / 7.0
 """Largest accepted regular-wave steepness H/λ [-] (Michell's breaking limit ≈ 0.142)."""
@@ -126,7 +154,8 @@ class RegularWave:
     wavelength : float, optional
         Wavelength λ > 0 [m].
     heading : float, optional
-        χ, the direction the waves travel to, clockwise from north [rad].
+        χ, the direction the waves travel to, clockwise from north [rad]; default 0 (left
+        unset: :func:`ship_gym.engine.ship.wave_field_for` then takes its ``wave_heading``).
     phase : float, optional
         Phase ε [rad].
     ramp_time : float, optional
@@ -138,7 +167,7 @@ class RegularWave:
     height: float
     period: float | None = None
     wavelength: float | None = None
-    heading: float = 0.0
+    heading: float = DEFAULT_HEADING
     phase: float = 0.0
     ramp_time: float = 50.0
     g: float = GRAVITY
@@ -181,7 +210,8 @@ class RegularWave:
         object.__setattr__(self, "height", height)
         object.__setattr__(self, "period", period)
         object.__setattr__(self, "wavelength", length)
-        object.__setattr__(self, "heading", float(self.heading))
+        if heading_is_set(self):
+            object.__setattr__(self, "heading", float(self.heading))
         object.__setattr__(self, "phase", float(self.phase))
         object.__setattr__(self, "ramp_time", ramp)
 
@@ -235,7 +265,8 @@ class IrregularSea:
     tp : float
         Peak period Tp > 0 [s].
     heading : float, optional
-        Mean direction χ̄ the waves travel to, clockwise from north [rad].
+        Mean direction χ̄ the waves travel to, clockwise from north [rad]; default 0 (left
+        unset: :func:`ship_gym.engine.ship.wave_field_for` then takes its ``wave_heading``).
     spectrum : {"jonswap", "pm"}, optional
         Spectrum family; "pm" is JONSWAP with γ = 1 (``gamma`` ignored).
     gamma : float, optional
@@ -264,7 +295,7 @@ class IrregularSea:
 
     hs: float
     tp: float
-    heading: float = 0.0
+    heading: float = DEFAULT_HEADING
     spectrum: SpectrumName = "jonswap"
     gamma: float = 3.3
     spreading_s: float | None = None

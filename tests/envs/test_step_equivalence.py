@@ -435,7 +435,7 @@ def test_validate_actions_clips_like_np_clip():
     x = rng.uniform(-3.0, 3.0, 60)
     x[::5] = -0.0
     x[1::5] = rng.choice([-1.0, 1.0], 12)
-    out = validate_actions(x.astype(np.float32), (30, 2))
+    out = validate_actions(x.astype(np.float32).reshape(30, 2), (30, 2))
     assert_identical(out, np.clip(x.astype(np.float32).astype(float).reshape(30, 2), -1.0, 1.0))
     assert not np.shares_memory(validate_actions(out, (30, 2)), out)
 
