@@ -46,11 +46,6 @@ __all__ = [
     "write_or_rescue",
 ]
 
-#: Steepness limit of an irregular sea, Hs / λp ≤ 1/7 with λp = g Tp² / (2π): the Stokes/Michell
-#: breaking limit H/λ ≈ 1/7 (0.142) applied to the significant height at the peak wavelength
-#: (DNV-RP-C205 §3.5.5 gives Hs/λp ≤ 1/15 for Tp ≤ 8 s, 1/25 for Tp ≥ 15 s as the *design*
-#: steepness; 1/7 is the physical bound, so every realistic sea passes).
-MAX_IRREGULAR_STEEPNESS = 1.0 / 7.0
 GRAVITY = 9.80665
 
 
@@ -191,16 +186,15 @@ def unique(values: Sequence[float], option: str, what: str = "values") -> tuple[
 
 
 def check_irregular_sea(hs: float, tp: float, option: str) -> None:
-    """Refuse a sea steeper than Hs/λp = 1/7 (λp = g Tp²/2π), naming ``option``."""
+    """Refuse a sea state that cannot exist (:func:`ship_gym.waves.sea_state.steepness_error`:
+    Hs/λp above DNV-RP-C205's limit), naming ``option``."""
+    from ship_gym.waves.sea_state import steepness_error
+
     if hs <= 0.0 or tp <= 0.0:
         raise CLIError(f"{option}: expected Hs > 0 [m] and Tp > 0 [s], got {hs:g} {tp:g}")
-    wavelength = GRAVITY * tp**2 / (2.0 * math.pi)
-    if hs / wavelength > MAX_IRREGULAR_STEEPNESS:
-        raise CLIError(
-            f"{option}: Hs {hs:g} m at Tp {tp:g} s is steeper than the breaking limit "
-            f"Hs/λp ≤ 1/7 (λp = g Tp²/2π = {wavelength:.1f} m: Hs ≤ "
-            f"{wavelength * MAX_IRREGULAR_STEEPNESS:.2f} m); expected a lower Hs or a longer Tp"
-        )
+    error = steepness_error("irregular", hs, tp, "Hs", "Tp")
+    if error is not None:
+        raise CLIError(f"{option}: {error}; expected a lower Hs or a longer Tp")
 
 
 def irregular_sea(values: Sequence[float], option: str = "--irregular") -> tuple[float, float]:

@@ -50,8 +50,8 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         type=positive_float,
         nargs=2,
         metavar=("HS", "TP"),
-        help="JONSWAP significant height [m] and peak period [s]; Hs/λp <= 1/7 "
-        "(λp = g Tp²/2π, the breaking limit)",
+        help="JONSWAP significant height [m] and peak period [s]; Hs/λp <= 1/15 (Tp <= 8 s) "
+        "… 1/25 (Tp >= 15 s), λp = g Tp²/2π (DNV-RP-C205 §3.5.5.4)",
     )
     p.add_argument("--components", type=count, default=50, help="irregular-sea components")
     p.add_argument("--seed", type=seed, default=0, help="seed of the irregular sea")

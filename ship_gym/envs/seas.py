@@ -10,8 +10,8 @@ from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
-from ship_gym.conventions import GRAVITY
 from ship_gym.envs.validation import check_range, check_real
+from ship_gym.waves.sea_state import steepness_error
 
 if TYPE_CHECKING:
     from ship_gym.waves.wave_field import WaveField
@@ -24,46 +24,6 @@ PERIOD_LIMITS = (1.0, 40.0)
 """Accepted wave periods T or Tp [s]."""
 HEADING_LIMITS = (-360.0, 720.0)
 """Accepted relative wave headings [deg]."""
-
-
-def irregular_steepness_limit(tp: float) -> float:
-    """Largest average steepness S_p = 2π Hs / (g Tp²) = Hs/λp of a physical sea state (DNV-RP-C205,
-    *Environmental conditions and environmental loads*, 2010, §3.5.5.4): 1/15 for Tp ≤ 8 s,
-    1/25 for Tp ≥ 15 s, linear in between (seas steeper than this break)."""
-    if tp <= 8.0:
-        return 1.0 / 15.0
-    if tp >= 15.0:
-        return 1.0 / 25.0
-    return 1.0 / 15.0 + (tp - 8.0) / 7.0 * (1.0 / 25.0 - 1.0 / 15.0)
-
-
-def steepness_error(
-    kind: str, height: float, period: float, height_name: str, period_name: str
-) -> str | None:
-    """Why a wave of ``height`` [m] at ``period`` [s] cannot exist (None if it can): a regular
-    wave steeper than the breaking limit H/λ = MAX_STEEPNESS (Stokes/Michell: 1/7), an irregular
-    sea steeper than :func:`irregular_steepness_limit`."""
-    from ship_gym.waves.sea_state import MAX_STEEPNESS
-
-    wavelength = GRAVITY * period**2 / _TWO_PI
-    steepness = height / wavelength
-    if kind == "regular":
-        if steepness > MAX_STEEPNESS:
-            return (
-                f"{height_name} = {height:g} m at {period_name} = {period:g} s "
-                f"(λ = {wavelength:.1f} m) exceeds the breaking steepness H/λ = "
-                f"{MAX_STEEPNESS:.3f}: H <= {MAX_STEEPNESS * wavelength:.2f} m at that period"
-            )
-        return None
-    limit = irregular_steepness_limit(period)
-    if steepness > limit:
-        return (
-            f"{height_name} = {height:g} m at {period_name} = {period:g} s "
-            f"(λp = {wavelength:.1f} m, Hs/λp = {steepness:.3g}) is steeper than a "
-            f"physical sea: Hs/λp <= 1/{1.0 / limit:.1f} at that Tp (DNV-RP-C205 §3.5.5.4: 1/15 "
-            f"for Tp <= 8 s, 1/25 for Tp >= 15 s), i.e. Hs <= {limit * wavelength:.2f} m"
-        )
-    return None
 
 
 @dataclass(frozen=True)

@@ -151,8 +151,8 @@ CASES: list[tuple[str, int, list[str]]] = [
     ("kernels s175 --plot {dir}", R, ["--plot", "is a directory"]),
     ("kernels s175 --plot= --json {file}/k.json", R, ["--json", "is a file"]),
     # simulate
-    ("simulate --irregular 50 11", R, ["--irregular", "1/7", "Hs 50"]),
-    ("simulate --irregular 30 1", R, ["--irregular", "1/7"]),
+    ("simulate --irregular 50 11", R, ["--irregular", "DNV-RP-C205", "Hs = 50"]),
+    ("simulate --irregular 30 1", R, ["--irregular", "DNV-RP-C205"]),
     ("simulate --irregular 5", U, ["--irregular", "expected 2 arguments"]),
     ("simulate --irregular -5 11", U, ["--irregular", "> 0"]),
     ("simulate --irregular 5 0", U, ["--irregular", "> 0"]),
@@ -204,7 +204,7 @@ CASES: list[tuple[str, int, list[str]]] = [
     ("capsize-map --froude 2", U, ["--froude", "[0, 1]"]),
     ("capsize-map --sea regular:1:x", R, ["--sea", "regular:1:x"]),
     ("capsize-map --sea bogus", R, ["--sea", "bogus", "regular:H:lambda"]),
-    ("capsize-map --sea jonswap:50:5", R, ["--sea", "1/7"]),
+    ("capsize-map --sea jonswap:50:5", R, ["--sea", "DNV-RP-C205"]),
     ("capsize-map --sea regular:5:100 regular:5:100", R, ["--sea", "duplicate"]),
     ("capsize-map --seeds 0", U, ["--seeds", ">= 1"]),
     ("capsize-map --seeds -2", U, ["--seeds", ">= 1"]),
@@ -234,7 +234,7 @@ CASES: list[tuple[str, int, list[str]]] = [
     # dead-ship
     ("dead-ship --hs 0", U, ["--hs", "> 0"]),
     ("dead-ship --tp -1", U, ["--tp", "> 0"]),
-    ("dead-ship --hs 30 --tp 4", R, ["--hs/--tp", "1/7"]),
+    ("dead-ship --hs 30 --tp 4", R, ["--hs/--tp", "DNV-RP-C205"]),
     ("dead-ship --seeds 0", U, ["--seeds", ">= 1"]),
     ("dead-ship --n-jobs 0", U, ["--n-jobs", ">= 1"]),
     ("dead-ship --duration 0", U, ["--duration", "> 0"]),
