@@ -107,51 +107,27 @@ def bounded_float(low: float, high: float, *, low_open: bool = False) -> Callabl
     return check
 
 
-def count(text: str) -> int:
-    """An integer ≥ 1."""
-    value = _integer(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 1, got {text!r}")
-    return value
-
-
-def min_count(minimum: int) -> Callable[[str], int]:
-    """A type function for an integer ≥ ``minimum``."""
+def min_count(minimum: int, what: str = "an integer") -> Callable[[str], int]:
+    """A type function for an integer ≥ ``minimum``; ``what`` names it in the error."""
 
     def check(text: str) -> int:
         value = _integer(text)
         if value < minimum:
-            raise argparse.ArgumentTypeError(f"expected an integer >= {minimum}, got {text!r}")
+            raise argparse.ArgumentTypeError(f"expected {what} >= {minimum}, got {text!r}")
         return value
 
     check.__name__ = "min_count"
     return check
 
 
-def nonnegative_int(text: str) -> int:
-    """An integer ≥ 0."""
-    value = _integer(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
-    return value
-
-
-def seed(text: str) -> int:
-    """A random seed: an integer ≥ 0 (NumPy refuses negative seeds)."""
-    value = _integer(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected a seed, an integer >= 0, got {text!r}")
-    return value
-
-
-def n_jobs(text: str) -> int:
-    """A number of worker processes: an integer ≥ 1."""
-    value = _integer(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(
-            f"expected a number of worker processes, an integer >= 1, got {text!r}"
-        )
-    return value
+count = min_count(1)
+"""An integer ≥ 1."""
+nonnegative_int = min_count(0)
+"""An integer ≥ 0."""
+seed = min_count(0, "a seed, an integer")
+"""A random seed: an integer ≥ 0 (NumPy refuses negative seeds)."""
+n_jobs = min_count(1, "a number of worker processes, an integer")
+"""A number of worker processes: an integer ≥ 1."""
 
 
 def existing_file(text: str) -> str:
