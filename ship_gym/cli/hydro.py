@@ -55,7 +55,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     k.add_argument("--t-max", type=positive_float, default=60.0, help="kernel duration [s]")
     k.add_argument("--dt", type=positive_float, default=0.05, help="kernel time step [s]")
     k.add_argument("--method", default="filon", choices=["filon", "simpson", "trapezoid", "fft"])
-    k.add_argument("--tail", default="power", choices=["none", "power", "taper"])
+    k.add_argument("--tail", default="asymptotic", choices=["none", "power", "asymptotic", "taper"])
     k.add_argument("--plot", default="out/kernels.png", help="figure of K, L and reconstructions")
     k.add_argument("--json", default=None, help="write diagnostics to this JSON file")
     k.set_defaults(func=_cmd_kernels)

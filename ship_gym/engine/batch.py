@@ -95,12 +95,14 @@ from ship_gym.forces.froude_krylov import (
 from ship_gym.forces.radiation import (
     ConstantCoefficientRadiation,
     RadiationMemory,
+    speed_momentum_rows,
     state_space_radiation,
 )
 from ship_gym.forces.viscous import ViscousRollDamping
 from ship_gym.hull import equilibrium, load_hull
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
+from ship_gym.hydro.forward_speed import SpeedTerms, check_speed_terms
 from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.typing import IntegratorName
 from ship_gym.waves.wave_field import WaveField, stack_fields
@@ -292,7 +294,7 @@ def _csr(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
 @nb.njit(cache=True)
 def _state_space_rows(
     v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
-    force, zdot,
+    p_inf, p_mem, force, zdot,
 ):  # fmt: skip  # pragma: no cover - compiled
     """:func:`ship_gym.forces.radiation.state_space_radiation` per row (force zeroed first)."""
     for s in range(z.shape[0]):
@@ -300,7 +302,7 @@ def _state_space_rows(
             force[s, o] = 0.0
         state_space_radiation(
             v[s], z[s], speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val,
-            d_mat, has_d, force[s], zdot[s],
+            d_mat, has_d, p_inf, p_mem, force[s], zdot[s],
         )  # fmt: skip
 
 
@@ -318,7 +320,15 @@ class BatchStateSpaceRadiation(BatchForceModel):
 
     name = "radiation"
 
-    def __init__(self, a: NDArray, b: NDArray, c: NDArray, d: NDArray, a_inf: NDArray) -> None:
+    def __init__(
+        self,
+        a: NDArray,
+        b: NDArray,
+        c: NDArray,
+        d: NDArray,
+        a_inf: NDArray,
+        speed_terms: SpeedTerms = "all",
+    ) -> None:
         a, b, c, d = (np.asarray(x, float) for x in (a, b, c, d))
         n = a.shape[0]
         if a.shape != (n, n) or b.shape != (n, 6) or c.shape != (6, n) or d.shape != (6, 6):
@@ -326,6 +336,13 @@ class BatchStateSpaceRadiation(BatchForceModel):
                 f"state-space shapes A {a.shape}, B {b.shape}, C {c.shape}, D {d.shape}; "
                 "expected (n, n), (n, 6), (6, n), (6, 6)"
             )
+        self.speed_terms: SpeedTerms = check_speed_terms(speed_terms)
+        self.momentum_added_mass, self.momentum_memory = speed_momentum_rows(
+            a_inf, a, b, c, speed_terms
+        )
+        """(2, 6) and (2, n): the pitch and yaw rows of Lᵀ A(∞) and Lᵀ C A⁻¹
+        (:mod:`ship_gym.hydro.forward_speed` eq. 2)."""
+        self._surge_steady: NDArray | None = None
         self.matrices = (a, b, c)
         """The dense A (n, n), B (n, 6), C (6, n) of the fit."""
         self.feedthrough = d
@@ -338,6 +355,19 @@ class BatchStateSpaceRadiation(BatchForceModel):
         self.n_states = int(n)
         self.added_mass = np.asarray(a_inf, float)
 
+    def steady_surge_states(self, surge_offset: NDArray) -> NDArray:
+        """Memory states (n, n_states) of ships that have run at U + ``surge_offset`` [m/s] for
+        ever: z = −A⁻¹ B e₁ (u − U), so that a ship reset at another speed than the engine's
+        U starts without the transient of a surge step (its steady memory force is the fit's
+        B(0) (u − U) ≈ 0)."""
+        offset = np.asarray(surge_offset, dtype=float).reshape(-1)
+        if not np.any(offset):
+            return np.zeros((offset.size, self.n_states))
+        if self._surge_steady is None:
+            a, b, _ = self.matrices
+            self._surge_steady = -np.linalg.solve(a, b[:, SURGE])
+        return offset[:, None] * self._surge_steady[None, :]
+
     @classmethod
     def from_model(cls, model: RadiationMemory) -> BatchStateSpaceRadiation:
         """Reuse the fitted matrices of a single-ship ``RadiationMemory(method="state_space")``."""
@@ -347,14 +377,15 @@ class BatchStateSpaceRadiation(BatchForceModel):
                 "(PerShipForceModel) on the engine's numpy path"
             )
         ss = model.state_space
-        return cls(ss.A, ss.B, ss.C, ss.D, model.A_inf)
+        return cls(ss.A, ss.B, ss.C, ss.D, model.A_inf, model.speed_terms)
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
         force = np.empty((ctx.n, 6))
         zdot = np.empty((ctx.n, self.n_states))
         _state_space_rows(
             ctx.nu, np.ascontiguousarray(states), ctx.forward_speed, *self._a, *self._b,
-            *self._c, self._d, self._has_d, force, zdot,
+            *self._c, self._d, self._has_d, self.momentum_added_mass, self.momentum_memory, force,
+            zdot,
         )  # fmt: skip
         return force, zdot
 
@@ -1167,7 +1198,13 @@ class BatchSimulator:
         self.t[ships] = new_t
         self.eta[ships] = new_eta
         self.nu[ships] = new_nu
-        z0 = [f.initial_states(ships) for f in self.forces]
+        z0 = []
+        for model in self.forces:
+            z = model.initial_states(ships)
+            if isinstance(model, BatchStateSpaceRadiation):
+                # a ship starting at another speed than U has been running at it
+                z = z + model.steady_surge_states(new_nu[:, SURGE] - self.forward_speed)
+            z0.append(z)
         self.z[ships] = np.concatenate(z0, axis=1) if z0 else np.zeros((n, 0))
         self.n_steps[ships] = 0
         self._k[ships] = 0

@@ -137,6 +137,8 @@ class RadiationRecord(NamedTuple):
     c_val: NDArray
     d_mat: NDArray
     has_d: bool
+    p_inf: NDArray
+    p_mem: NDArray
 
 
 class DiffractionRecord(NamedTuple):
@@ -357,7 +359,7 @@ def _evaluate(
         total[3 + i] += rot[0, i] * fe[3] + rot[1, i] * fe[4] + rot[2, i] * fe[5]
     state_space_radiation(
         v, z, rad.speed, rad.a_ptr, rad.a_idx, rad.a_val, rad.b_ptr, rad.b_idx, rad.b_val,
-        rad.c_ptr, rad.c_idx, rad.c_val, rad.d_mat, rad.has_d, total, zdot,
+        rad.c_ptr, rad.c_idx, rad.c_val, rad.d_mat, rad.has_d, rad.p_inf, rad.p_mem, total, zdot,
     )  # fmt: skip
     if diff.enabled:
         diffraction_force(q[5], local, diff.xd[s], diff.dxd[s], diff.psi_ref[s : s + 1], total)
@@ -624,12 +626,15 @@ class CompiledBackend:
         if isinstance(rad_model, BatchStateSpaceRadiation):
             a, b, c = rad_model.matrices
             d = rad_model.feedthrough
-        else:
+            p_inf, p_mem = rad_model.momentum_added_mass, rad_model.momentum_memory
+        else:  # constant coefficients (Matusiak 2a/2b): no forward-speed momentum terms
             a, b, c = np.zeros((0, 0)), np.zeros((0, 6)), np.zeros((6, 0))
             d = np.zeros((6, 6)) if rad_model is None else rad_model.damping
+            p_inf, p_mem = np.zeros((2, 6)), np.zeros((2, 0))
         self.radiation = RadiationRecord(
-            sim.forward_speed, *_csr(a), *_csr(b), *_csr(c), _c(d), bool(np.any(d != 0.0))
-        )
+            sim.forward_speed, *_csr(a), *_csr(b), *_csr(c), _c(d), bool(np.any(d != 0.0)),
+            _c(p_inf), _c(p_mem),
+        )  # fmt: skip
         diff = next((f for f in sim.forces if isinstance(f, BatchDiffraction)), None)
         n_c = sim.n_components
         if diff is not None:
@@ -981,14 +986,15 @@ def _loop_fk(
 
 @nb.njit(cache=True)
 def _loop_radiation(
-    n, v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d
+    n, v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
+    p_inf, p_mem,
 ):  # fmt: skip  # pragma: no cover - compiled
     total = np.zeros(6)
     zdot = np.empty(z.shape[0])
     for _ in range(n):
         state_space_radiation(
             v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat,
-            has_d, total, zdot,
+            has_d, p_inf, p_mem, total, zdot,
         )  # fmt: skip
     return total
 

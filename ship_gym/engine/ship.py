@@ -55,6 +55,7 @@ from ship_gym.forces.viscous import BilgeKeel, ViscousRollDamping
 from ship_gym.hull import equilibrium, hydrostatics, load_hull
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
+from ship_gym.hydro.forward_speed import SpeedTerms
 from ship_gym.hydro.rao import natural_frequency
 from ship_gym.kinematics import encounter_frequency
 from ship_gym.typing import IntegratorName
@@ -283,7 +284,12 @@ def build_force_models(
     models: list[ForceModel] = [FroudeKrylovHydrostatics(hull, wave_field, method=setup.fk_method)]
     omega_roll = roll_natural_frequency(hull, database)
     if setup.radiation in ("state_space", "convolution"):
-        models.append(RadiationMemory(database, method=setup.radiation, dt=setup.dt))
+        # the horizontal-plane Munk terms are inside the manoeuvring derivatives when those are on
+        # (ship_gym.hydro.forward_speed, "Two planes")
+        terms: SpeedTerms = "vertical" if setup.manoeuvring else "all"
+        models.append(
+            RadiationMemory(database, method=setup.radiation, dt=setup.dt, speed_terms=terms)
+        )
     elif setup.radiation in ("2a", "2b"):
         w_e = abs(
             float(encounter_frequency(_peak_frequency(sea), setup.speed, wave_heading, hull.g))

@@ -34,16 +34,20 @@ With the ship moving, X_O(t) advances and c'ⱼ(t) rotates at the encounter freq
 ω_e = ω − kU cos β (U = ``ctx.forward_speed``): the time dependence comes out of the folding
 exactly. The transfer function is the **zero-speed** X_D, looked up at
 
-* ``frequency="encounter"`` (default): ω' = ω_e. The common approximation: the hull is
-  assumed to respond to the encountered wave as it would at zero speed to a wave of that
-  frequency, with the relative heading β; no forward-speed correction of the scattered
-  potential (the wavenumber seen by the hull is k(ω), not k(ω_e), a mismatch of this
-  approximation).
-* ``frequency="wave"``: ω' = ω (exact at zero speed).
+* ``frequency="wave"`` (default): ω' = ω. The zero-speed transfer function of the incident
+  wave's own pattern k(ω) (exact at zero speed); the force oscillates at ω_e through the folding.
+  This is the linearisation of :mod:`ship_gym.hydro.forward_speed`, which the frequency-domain
+  solver (:mod:`ship_gym.hydro.rao`) shares: no forward-speed correction of the scattered
+  potential.
+* ``frequency="encounter"``: ω' = ω_e, the older approximation "the hull responds to the
+  encountered wave as it would at zero speed to a wave of that frequency": it imposes the
+  pattern k(ω_e) = ω_e²/g on the hull, a factor (ω_e/ω)² off (2.6 in head seas at Fn 0.25 near
+  the S175's heave resonance). Kept for comparison.
 
-Negative encounter frequency (following seas, ship overtaking the waves, U cos β > g/ω): the
-folded phasor turns backwards, conj(c'(t)) ∝ e^{+i|ω_e|t}. A real linear system with the
-transfer function H(ω) in the e^{−iωt} convention has H(−ω) = conj(H(ω)), so X_D is taken as
+Negative encounter frequency (following seas, ship overtaking the waves, U cos β > g/ω), with
+``frequency="encounter"``: the folded phasor turns backwards, conj(c'(t)) ∝ e^{+i|ω_e|t}. A
+real linear system with the transfer function H(ω) in the e^{−iωt} convention has
+H(−ω) = conj(H(ω)), so X_D is taken as
 conj(X_D(|ω_e|, β)): the force is that of the same transfer function applied to the encountered
 signal written with a positive frequency, Re(conj(X_D) conj(c')) = Re(X_D c') (continuous
 through ω_e = 0, where X_D → 0).
@@ -55,8 +59,9 @@ Outside the database frequency range (ω_min, ω_max):
 * |ω'| > ω_max: X_D = 0 (``above_range="zero"``, default), or an error (``"raise"``). The
   attribute :attr:`n_above_range` counts such components. Short waves are weakly felt by a long
   hull but the force does not vanish physically (reflection in beam seas); with the S175
-  database (ω_max = 1.67 rad/s) this drops encounter frequencies above 1.67 rad/s, e.g. waves
-  shorter than ≈ 0.5 L in head seas at Fn 0.2.
+  database (ω_max = 1.67 rad/s) and the default wave-frequency look-up this drops waves shorter
+  than 22 m (0.13 L) at any speed (with ``frequency="encounter"``: waves shorter than ≈ 0.5 L
+  in head seas at Fn 0.2).
 
 Interpolation and caching
 -------------------------
@@ -175,8 +180,9 @@ class Diffraction(ForceModel):
         ship_gym's convention.
     wave_field : WaveField
         The incident field (components ωⱼ [rad/s], kⱼ [rad/m], χⱼ [rad]).
-    frequency : {"encounter", "wave"}
-        Frequency at which X_D is looked up.
+    frequency : {"wave", "encounter"}
+        Frequency at which X_D is looked up: the wave frequency (default, the hull sees the
+        wave pattern k(ω); :mod:`ship_gym.hydro.forward_speed`) or the encounter frequency.
     interpolation : {"linear"}
         Bilinear interpolation in (ω, β).
     heading_tolerance_deg : float
@@ -211,7 +217,7 @@ class Diffraction(ForceModel):
         database: xr.Dataset,
         wave_field: WaveField,
         *,
-        frequency: Frequency = "encounter",
+        frequency: Frequency = "wave",
         interpolation: str = "linear",
         heading_tolerance_deg: float = 0.5,
         above_range: AboveRange = "zero",

@@ -58,9 +58,16 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
-from ship_gym.conventions import GRAVITY, N_DOF, ROLL, SURGE
+from ship_gym.conventions import GRAVITY, HEAVE, N_DOF, PITCH, ROLL, SURGE, SWAY, YAW
 from ship_gym.forces.base import ForceContext, ForceModel
 from ship_gym.hydro.database import HydroArrays, as_arrays
+from ship_gym.hydro.forward_speed import (
+    MOMENT_ROWS,
+    SURGE_FREE,
+    SpeedTerms,
+    check_speed_terms,
+    momentum_rows,
+)
 from ship_gym.hydro.retardation import (
     KernelDecay,
     Method,
@@ -80,6 +87,7 @@ __all__ = [
     "RadiationMemory",
     "perturbation_velocity",
     "roll_natural_frequency",
+    "speed_momentum_rows",
 ]
 
 MemoryMethod = Literal["state_space", "convolution"]
@@ -100,10 +108,11 @@ DEFAULT_FIT_OPTIONS: dict[str, Any] = {
 round-off (≈ 2e-5 of the diagonal scale for the S175), which would otherwise get 8–12 states
 each. ``zero_dc`` imposes B_fit(0) = ∫K_fit dt = 0 and ``nonnegative_damping`` B_ii,fit(ω) ≥ 0
 on 0–3 rad/s. ``target_error = 5e-3`` (relative L2 error of K per pair, ≤ 12 states per pair)
-gives 140 states for the S175 (memory force within 0.24 % heave, 1.6 % roll and 2.4 %
-heave–pitch of the frequency domain). ``max_order = 6`` gives 102 states with similar memory
-errors but moves the 135° pitch RAO of the linear-limit test from 1.9 % to 2.4 %; 4 per pair
-(72 states) loses the roll memory (31 %).
+gives 124 states for the S175 with the default asymptotic kernel tail (the fit's A(ω) − A(∞)
+within 0.7 % heave, 0.9 % roll, 1.1 % pitch and 1.8 % heave–pitch of the database, relative
+RMS; 140 states with the single-power tail). With the power tail, ``max_order = 6`` gave 102
+states with similar memory errors but moved the 135° pitch RAO of the linear-limit test from
+1.9 % to 2.4 %, and 4 per pair (72 states) lost the roll memory (31 %).
 """
 
 _FIT_DT = 0.05
@@ -183,6 +192,62 @@ def perturbation_velocity(ctx: ForceContext) -> NDArray[np.float64]:
     return v
 
 
+def speed_momentum_rows(
+    a_inf: ArrayLike, a: ArrayLike, b: ArrayLike, c: ArrayLike, speed_terms: SpeedTerms = "all"
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Pitch and yaw rows of Lᵀ A(∞) (2, 6) and of Lᵀ C A⁻¹ (2, n) for a state-space memory.
+
+    With ż = A z + B ν_p, μ = C z and z(0) = 0, λ = C A⁻¹ z has λ̇ = μ + C A⁻¹ B ν_p = μ − K̂(0)
+    ν_p, K̂(0) = ∫K dt = B_fit(0) (zero when the fit imposes it): the momentum of eq. (2) of
+    :mod:`ship_gym.hydro.forward_speed` without states of its own; the surge input's share of
+    the momentum is left out (its E).
+    """
+    a_mat = np.asarray(a, dtype=float)
+    b_mat = np.asarray(b, dtype=float)
+    c_mat = np.asarray(c, dtype=float)
+    lam = np.linalg.solve(a_mat.T, c_mat.T).T if a_mat.size else np.zeros((N_DOF, 0))
+    # leave out the momentum of the surge input (the E of ship_gym.hydro.forward_speed): A is
+    # block-diagonal, so λ of the states of blocks driven by surge is λ's surge part
+    lam = lam * (state_inputs(a_mat, b_mat) != SURGE)[None, :]
+    return momentum_rows(np.asarray(a_inf) * SURGE_FREE, speed_terms), momentum_rows(
+        lam, speed_terms
+    )
+
+
+def state_inputs(a: ArrayLike, b: ArrayLike) -> NDArray[np.int64]:
+    """Input (velocity component) driving each state of a block-diagonal realisation (n,).
+
+    States coupled through A form a block; a block's input is the one column of B that is
+    non-zero on it (−1 for a block without input).
+
+    Raises
+    ------
+    ValueError
+        If a block is driven by more than one input (not a per-pair realisation).
+    """
+    a_mat, b_mat = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    n = a_mat.shape[0]
+    out = np.full(n, -1, dtype=np.int64)
+    seen = np.zeros(n, dtype=bool)
+    coupled = (a_mat != 0.0) | (a_mat.T != 0.0)
+    for start in range(n):
+        if seen[start]:
+            continue
+        block, stack = [], [start]
+        seen[start] = True
+        while stack:
+            k = stack.pop()
+            block.append(k)
+            for m in np.flatnonzero(coupled[k] & ~seen):
+                seen[m] = True
+                stack.append(int(m))
+        inputs = np.flatnonzero(np.any(b_mat[block] != 0.0, axis=0))
+        if inputs.size > 1:
+            raise ValueError(f"states {sorted(block)} are driven by inputs {inputs.tolist()}")
+        out[block] = inputs[0] if inputs.size else -1
+    return out
+
+
 # ============================================================================================
 # memory model (Matusiak case 1)
 # ============================================================================================
@@ -200,14 +265,16 @@ class RadiationMemory(ForceModel):
     peak in the last 5 % of the window) and :attr:`ogilvie_error` how well the kernels
     reproduce the database A(ω), B(ω) (Ogilvie's relations).
 
-    High-frequency tail: ``tail="power"`` with ``tail_exponent="fit"`` (default) extends
-    B ∝ ω⁻ⁿ beyond ω_max with n fitted per pair on the last 20 % of the grid. For the bundled
-    S175 (ω_max = 1.67 rad/s, B(ω_max)/max B = 0.2–0.6, A(ω_max)/A(∞) = 0.5–0.85 — far from the
-    asymptotic regime) the fitted exponent is 2 for all pairs but sway–roll, and the
-    kernel-implied B − iω(A − A(∞)) matches the database within 0.8–4.9 % per pair (largest
-    error over 0.2–1.6 rad/s, relative to the diagonal scale), against 4–16 % with the
-    asymptotic n = 4 (sway–roll: ≈ 5 % either way). Kernels with n = 2 leave t = 0 with a finite
-    slope instead of zero slope; harmless for the trapezoid rule and the fit.
+    High-frequency tail: ``tail="asymptotic"`` with ``tail_exponent="fit"`` (default) extends
+    B(ω) beyond ω_max by the first two terms of its inverse-power series,
+    B(ω_max)[a(ω_max/ω)ⁿ + (1 − a)(ω_max/ω)ⁿ⁺²], n fitted per pair (2 for all S175 pairs but
+    sway–roll) and a on the last grid points (:mod:`ship_gym.hydro.retardation`). Chosen from the
+    S175's own kernels (docs/kernel_tails.md): the reconstructed A(ω) − A(∞) is within 0.4–3.2 %
+    of the database per pair (sway–roll 14 %), against 0.5–4.6 % (15 %) with the single power
+    ``tail="power"``; for a B with such a series the K(0) truncation error is O(ω_max⁻ⁿ⁻³) instead
+    of O(ω_max⁻³). The S175 grid stops at 1.67 rad/s, where B is still 22–73 % of its peak, so
+    its kernels carry a truncation uncertainty of ±14 % in K(0) at heave–pitch (heave ±1 %, roll
+    ±2 %, pitch ±8 %), which only a database run to higher frequency removes.
 
     Methods
     -------
@@ -250,10 +317,10 @@ class RadiationMemory(ForceModel):
         ``"state_space"``.
     t_max : float
         Kernel truncation time [s]; for the convolution it is rounded to a multiple of dt.
-    tail : {"power", "none", "taper"}
+    tail : {"asymptotic", "power", "none", "taper"}
         High-frequency treatment of B(ω) (:mod:`ship_gym.hydro.retardation`).
     tail_exponent : int or "fit"
-        Exponent n of the power tail B ∝ ω⁻ⁿ.
+        Exponent n of the leading tail term B ∝ ω⁻ⁿ.
     quadrature : {"filon", "simpson", "trapezoid", "fft"}
         Kernel quadrature (default Filon, Gourlay eq. 4–10).
     kernel_refinement : int
@@ -293,15 +360,17 @@ class RadiationMemory(ForceModel):
         method: MemoryMethod = "state_space",
         dt: float | None = None,
         t_max: float = 60.0,
-        tail: Tail = "power",
+        tail: Tail = "asymptotic",
         tail_exponent: int | Literal["fit"] = "fit",
         quadrature: Method = "filon",
         kernel_refinement: int = 2,
         fit_options: Mapping[str, Any] | None = None,
         commit_tolerance: float = 1e-6,
+        speed_terms: SpeedTerms = "all",
     ) -> None:
         if method not in ("state_space", "convolution"):
             raise ValueError(f"method={method!r}; expected 'state_space' or 'convolution'")
+        self.speed_terms: SpeedTerms = check_speed_terms(speed_terms)
         h = _hydro_arrays(database)
         if h.added_mass_infinite is None:
             raise ValueError(
@@ -353,6 +422,12 @@ class RadiationMemory(ForceModel):
             n_steps = max(2, round(t_max / self.dt))
             self.kernels = kernels_on(self.dt / self._refine, n_steps * self.dt)
             self._setup_convolution(n_steps)
+            # λ (heave and sway components) integrated as two states: λ̇ = μ
+            self.n_states = 2
+            select = np.zeros((N_DOF, 2))
+            select[HEAVE, 0] = select[SWAY, 1] = 1.0
+            self._p_inf = momentum_rows(self.A_inf * SURGE_FREE, speed_terms)
+            self._p_mem = momentum_rows(select, speed_terms)
         else:
             self.kernels = kernels_on(_FIT_DT, t_max)
             opts = dict(DEFAULT_FIT_OPTIONS)
@@ -374,6 +449,9 @@ class RadiationMemory(ForceModel):
             self._C = np.ascontiguousarray(ss.C)
             self._D = np.ascontiguousarray(ss.D)
             self._has_d = bool(np.any(self._D != 0.0))
+            self._p_inf, self._p_mem = speed_momentum_rows(
+                self.A_inf, ss.A, ss.B, ss.C, speed_terms
+            )
         self.decay: KernelDecay = kernel_decay(self.kernels.t, self.kernels.K)
         if not self.decay.all_decayed:
             worst = float(np.max(self.decay.ratio))
@@ -511,7 +589,10 @@ class RadiationMemory(ForceModel):
         if self._count < 0:
             raise ValueError("the convolution history is empty: call reset(t0, ctx) first")
 
-    def _memory_convolution(self, ctx: ForceContext, v: NDArray[np.float64]) -> NDArray:
+    def _memory_convolution(
+        self, ctx: ForceContext, v: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """μ at ``ctx.t`` and the share of μ due to the surge input (both (6,))."""
         self._require_reset()
         dt = self._dt
         t_n = self._t0 + self._count * dt
@@ -524,21 +605,28 @@ class RadiationMemory(ForceModel):
             )
         h = min(max(h, 0.0), dt)
         if self._count == 0 and h == 0.0:
-            return np.zeros(N_DOF)  # empty integral at t = t₀
+            return np.zeros(N_DOF), np.zeros(N_DOF)  # empty integral at t = t₀
         flat, ks, last = self._shifted(h)
         n = self._n_kernel
         p = self._count % n
         window = self._buffer[p + 1 : p + 1 + n].reshape(-1)
-        mu = flat @ window
         v_n = self._buffer[p]
-        if h == 0.0:
-            if self._count > 0:  # use the current velocity at the newest node
-                mu += (0.5 * dt) * (self._k0 @ (v - v_n))
-        else:
-            mu += (0.5 * h) * (self._k0 @ v)
-        if self._count < last:  # the first sample is an end node of the trapezoid
-            mu -= (0.5 * dt) * (ks[self._count] @ self._v_first)
-        return mu
+        # μ, and the share of the surge input (column SURGE of every kernel sample, the
+        # window's surge entries): the same quadrature on one input
+        parts = []
+        for columns in (slice(None), slice(SURGE, None, N_DOF)):
+            mu = flat[:, columns] @ window[columns]
+            pick = slice(None) if columns == slice(None) else slice(SURGE, SURGE + 1)
+            k0, vv, vn, vf = self._k0[:, pick], v[pick], v_n[pick], self._v_first[pick]
+            if h == 0.0:
+                if self._count > 0:  # use the current velocity at the newest node
+                    mu = mu + (0.5 * dt) * (k0 @ (vv - vn))
+            else:
+                mu = mu + (0.5 * h) * (k0 @ vv)
+            if self._count < last:  # the first sample is an end node of the trapezoid
+                mu = mu - (0.5 * dt) * (ks[self._count][:, pick] @ vf)
+            parts.append(mu)
+        return parts[0], parts[1]
 
     def evaluate(
         self, ctx: ForceContext, states: NDArray[np.float64]
@@ -560,17 +648,21 @@ class RadiationMemory(ForceModel):
             (n_states,) ż = A z + B ν_p (empty for the convolution).
         """
         v = perturbation_velocity(ctx)
+        z = np.asarray(states, dtype=float)
+        if z.shape != (self.n_states,):
+            raise ValueError(f"states has shape {z.shape}; expected ({self.n_states},)")
         if self.method == "convolution":
-            force = -self._memory_convolution(ctx, v)
-            states_dot = self._empty
+            mu, mu_surge = self._memory_convolution(ctx, v)
+            force = -mu
+            states_dot = (mu - mu_surge)[[HEAVE, SWAY]]  # λ̇: the memory of all but surge
         else:
-            z = np.asarray(states, dtype=float)
-            if z.shape != (self.n_states,):
-                raise ValueError(f"states has shape {z.shape}; expected ({self.n_states},)")
             force = -(self._C @ z)
             states_dot = self._A @ z + self._B @ v
             if self._has_d:
                 force -= self._D @ v
+        u = float(ctx.nu[SURGE])  # the ship's own surge velocity (= U to first order)
+        if u != 0.0:
+            force[list(MOMENT_ROWS)] += u * (self._p_inf @ v + self._p_mem @ z)
         return force, states_dot
 
 
@@ -808,14 +900,26 @@ class ConstantCoefficientRadiation(ForceModel):
 @nb.njit(cache=True, nogil=True)
 def state_space_radiation(
     v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
-    total, zdot,
+    p_inf, p_mem, total, zdot,
 ):  # fmt: skip  # pragma: no cover - compiled
-    """Radiation memory: ż = A z + B ν_p into zdot, −(C z + D ν_p) added to total; A, B, C in
-    CSR form (A block-diagonal, B one non-zero per state: O(n_states))."""
+    """Radiation memory: ż = A z + B ν_p into zdot, −(C z + D ν_p) + u Lᵀ(A(∞) ν_p + λ) added
+    to total (:mod:`ship_gym.hydro.forward_speed` eq. 2 with the surge velocity u for U,
+    λ = C A⁻¹ z); A, B, C in CSR form (A
+    block-diagonal, B one non-zero per state: O(n_states)); ``p_inf`` (2, 6) and ``p_mem``
+    (2, n) the pitch and yaw rows of Lᵀ A(∞) and Lᵀ C A⁻¹."""
     vp = np.empty(6)
     for i in range(6):
         vp[i] = v[i]
     vp[SURGE] -= speed
+    u = v[SURGE]  # the Kirchhoff moment takes the ship's own surge velocity (= U to first order)
+    if u != 0.0:
+        for r in range(2):
+            s = 0.0
+            for j in range(6):
+                s += p_inf[r, j] * vp[j]
+            for k in range(z.shape[0]):
+                s += p_mem[r, k] * z[k]
+            total[PITCH if r == 0 else YAW] += u * s
     for i in range(a_ptr.shape[0] - 1):
         s = 0.0
         for p in range(a_ptr[i], a_ptr[i + 1]):

@@ -13,24 +13,29 @@ encounter frequency (deep water)
 
 (:func:`ship_gym.kinematics.encounter_frequency`, shared by every stage). The linear equations of
 motion about O, M ẍ + A ẍ + B ẋ + C x = Re(F a e^{−iω_e t}), with x(t) = Re(ξ a e^{−iω_e t})
-(capytaine's time convention, x(t) = Re(X e^{−iωt})), become
+(capytaine's time convention, x(t) = Re(X e^{−iωt})), become, with s = −iω_e,
 
-    [−ω_e² (M + A(ω_c)) − i ω_e (B(ω_c) + B_extra) + C + C_extra] ξ = F_exc(ω, β),     (2)
+    [s² M + C + C_extra + R(ω_e, U) + s B_extra] ξ = F_exc(ω, β),                         (2)
 
-with ξ the complex RAO per unit wave amplitude [m/m for surge, sway, heave; rad/m for roll,
-pitch, yaw] and ω_c = |ω_e| (``frequency="encounter"``, default) or ω_c = ω (``"wave"``, see
-below). Its phase is relative to the incident crest at O: the wave at O is ζ(O, t) = Re(a e^{−iω_e
-t}), so ζ(O, 0) = a.
+    R(ω_e, U) = (s I − U Lᵀ) [A(ω_c) + B(ω_c)/s] (s I + U L)
 
-Why these frequencies. A(ω), B(ω) are even in ω (a real kernel) and the radiation problem at
-forward speed is linearised about the zero-speed solution (no U-dependent terms of strip theory,
-which the time-domain Cummins model does not have either: its convolution with zero-speed
-kernels gives exactly A(|ω_e|), B(|ω_e|) for a motion at ω_e). The excitation per unit amplitude
-F_exc(ω, β) depends on the incident wave's spatial pattern e^{ik(x cos β + y sin β)} in body axes,
-which is the same whatever the speed, so it is taken at the wave frequency ω (k = ω²/g); the
-diffraction part is thereby approximated by its zero-speed value, as in the time domain.
-``frequency="wave"`` evaluates A and B at ω instead of |ω_e| (the crude "constant coefficients at
-the wave frequency" model); it changes nothing at U = 0.
+the radiation impedance of :mod:`ship_gym.hydro.forward_speed` (its eq. 3: the zero-speed
+coefficients taken to speed by the body-axis kinematics L and the Kirchhoff moment Lᵀ, which is
+Salvesen–Tuck–Faltinsen's forward-speed correction without end terms, and exactly what the
+time-domain engine integrates). At U = 0, R = s² A + s B. ξ is the complex RAO per unit wave
+amplitude [m/m for surge, sway, heave; rad/m for roll, pitch, yaw] and ω_c = |ω_e|
+(``frequency="encounter"``, default) or ω_c = ω (``"wave"``, see below). Its phase is relative
+to the incident crest at O: the wave at O is ζ(O, t) = Re(a e^{−iω_e t}), so ζ(O, 0) = a.
+
+Why these frequencies. The radiated waves oscillate at ω_e, so A and B are read at |ω_e| (they
+are even in ω). The excitation per unit amplitude F_exc(ω, β) = F_FK + F_D is taken at the wave
+frequency ω: the Froude–Krylov part is the incident pressure over the hull, whose spatial
+pattern e^{ik(x cos β + y sin β)} (k = ω²/g) is the same whatever the speed, and the diffraction
+part is the zero-speed value for that pattern — the time domain does the same
+(:mod:`ship_gym.forces.diffraction`, ``frequency="wave"``). ``frequency="wave"`` evaluates A
+and B at ω instead of |ω_e| (the crude "constant coefficients at the wave frequency" model);
+it changes nothing at U = 0. ``speed_terms`` selects the planes of the outer factor (``"all"``,
+``"vertical"`` — what the engine uses with the manoeuvring model on — or ``"none"``).
 
 Interpolation
 -------------
@@ -74,6 +79,7 @@ from scipy.optimize import brentq
 
 from ship_gym.conventions import DOF_NAMES, GRAVITY, N_DOF, dof_index
 from ship_gym.hydro.database import HydroArrays, as_arrays, mirror_headings
+from ship_gym.hydro.forward_speed import SpeedTerms, check_speed_terms, radiation_impedance
 from ship_gym.kinematics import encounter_frequency
 
 Frequency = Literal["encounter", "wave"]
@@ -254,6 +260,7 @@ def response_amplitude_operator(
     free_dofs: Sequence[bool] | Sequence[int | str] | None = None,
     frequency: Frequency = "encounter",
     interpolation: Interpolation = "linear",
+    speed_terms: SpeedTerms = "all",
 ) -> np.ndarray:
     """Complex RAOs per unit wave amplitude, solving eq. (2) of the module docstring.
 
@@ -286,6 +293,8 @@ def response_amplitude_operator(
         Frequency at which A and B are read: |ω_e| (default) or ω.
     interpolation : {"linear", "cubic"}, optional
         Interpolation of the database along ω (see the module docstring).
+    speed_terms : {"all", "vertical", "none"}, optional
+        Planes of the forward-speed Kirchhoff moment (:mod:`ship_gym.hydro.forward_speed`).
 
     Returns
     -------
@@ -306,6 +315,7 @@ def response_amplitude_operator(
         raise ValueError(f"frequency must be 'encounter' or 'wave'; got {frequency!r}")
     if interpolation not in ("linear", "cubic"):
         raise ValueError(f"interpolation must be 'linear' or 'cubic'; got {interpolation!r}")
+    terms = check_speed_terms(speed_terms)
     if "excitation_force" not in database:
         raise ValueError("database has no 'excitation_force'; expected a diffraction database")
     w = _frequencies(omega)
@@ -334,7 +344,8 @@ def response_amplitude_operator(
     f_exc = _excitation_at(arrays, beta, w, interpolation)  # (n, 6)
     a, b = _radiation_at(arrays, w_c, interpolation)  # (n, 6, 6)
 
-    k = -(w_e**2)[:, None, None] * (m + a) - 1j * w_e[:, None, None] * (b + b_extra) + c
+    s = (-1j * w_e)[:, None, None]
+    k = s * s * m + c + s * b_extra + radiation_impedance(a, b, w_e, speed, terms)
     idx = np.flatnonzero(mask)
     k_ff = k[:, idx[:, None], idx[None, :]]
     rao = np.zeros((len(w), N_DOF), dtype=complex)

@@ -79,10 +79,27 @@ Databases stop at a finite ω_max; the integrals are truncated there unless a ta
     leading term is ω⁻⁴. n = 4 also keeps K(0), K'(0) and K''(0) finite. The tail adds
     (2/π)B(ω_max)ω_max/(n − 1) to K(0) and cancels most of the truncation ringing at large t.
     ``tail_exponent="fit"`` fits n per DOF pair (least squares on log|B| over the last 20 % of
-    the grid, rounded to an integer in [2, 8]; pairs where the fit is not possible keep 4) —
-    fragile on BEM data with irregular-frequency spikes, hence not the default. For the cosine
-    form the tail of A(ω) − A(∞) is always ∝ ω⁻² (from the same expansion: A − A(∞) ≈
-    −K(0)/ω²).
+    the grid, rounded to an integer in [2, 8]; pairs where the fit is not possible keep 4). For
+    the cosine form the tail of A(ω) − A(∞) is always ∝ ω⁻² (from the same expansion: A − A(∞) ≈
+    −K(0)/ω²). A single power pinned at B(ω_max) ignores the next term of the series: for
+    B = ω²/(1 + ω²)² (∝ ω⁻² − 2ω⁻⁴ + …) cut at ω_max = 4 rad/s it leaves 2.4e-2 of K(0) even
+    with the right n = 2 (error O(ω_max⁻³)).
+``"asymptotic"``
+    Two terms of that series: B(ω) = B(ω_max)[a(ω_max/ω)ⁿ + (1 − a)(ω_max/ω)ⁿ⁺²] beyond ω_max,
+    n = ``tail_exponent`` (integer or ``"fit"``), a fitted by one-parameter least squares on the
+    last :data:`ASYMPTOTIC_TAIL_POINTS` = 5 grid points (value at ω_max matched exactly, so
+    the extension is continuous; a clipped to [0, 2], which keeps the sign of B(ω_max)), and
+    integrated analytically like ``"power"``. The same B extension (same a) gives the
+    sine-form L; the cosine form applies it to A − A(∞) with n = 2. Exact for B = c_nω⁻ⁿ +
+    c_{n+2}ω⁻ⁿ⁻²; the K(0) error is O(ω_max⁻⁵): ω²/(1+ω²)² cut at 4 rad/s, 1.8e-3 of K(0)
+    (6.1e-5 at 8 rad/s); ω²/(1+ω²)³ (∝ ω⁻⁴), 1.2e-4 (1.1e-6). This is the tail recommended
+    for ship databases (``tail="asymptotic"``, ``tail_exponent="fit"``; docs/kernel_tails.md):
+    on the bundled S175 (ω_max = 1.67 rad/s, B(ω_max) still 22–73 % of its peak) the tail
+    carries 17–59 % of K(0), and of all options it has the smallest worst-pair error of the
+    database A(ω) − A(∞) reproduced through Ogilvie's relation (relative RMS error per pair
+    0.4–3.2 %, sway–roll 14 %; single power with fitted n: 0.5–4.6 %, 15 %; none: 5–26 %).
+    Measured truncation uncertainty of the S175 kernels (spread between the two best tails):
+    K(0) ±14 %, kernel L2 norm ±11 % (heave–pitch; heave ±1 %).
 ``"taper"``
     Multiply the integrand by a Hann (raised-cosine) taper over the last ``taper_fraction`` of
     [0, ω_max], so it goes smoothly to zero at ω_max. This suppresses the truncation ringing at
@@ -103,6 +120,8 @@ from scipy.special import exp1, roots_laguerre
 from ship_gym.conventions import DOF_NAMES, dof_index
 
 __all__ = [
+    "ASYMPTOTIC_TAIL_POINTS",
+    "ASYMPTOTIC_WEIGHT_RANGE",
     "DEFAULT_N_FFT",
     "DEFAULT_TAIL_EXPONENT",
     "FILON_SERIES_THRESHOLD",
@@ -127,11 +146,11 @@ __all__ = [
 
 Method = Literal["filon", "simpson", "trapezoid", "fft"]
 Form = Literal["sine", "cosine"]
-Tail = Literal["none", "power", "taper"]
+Tail = Literal["none", "power", "asymptotic", "taper"]
 
 METHODS: tuple[Method, ...] = ("filon", "simpson", "trapezoid", "fft")
 FORMS: tuple[Form, ...] = ("sine", "cosine")
-TAILS: tuple[Tail, ...] = ("none", "power", "taper")
+TAILS: tuple[Tail, ...] = ("none", "power", "asymptotic", "taper")
 _Choice = TypeVar("_Choice", bound=str)
 
 FILON_SERIES_THRESHOLD: float = 0.4
@@ -145,6 +164,12 @@ COSINE_TAIL_EXPONENT: int = 2
 
 DEFAULT_N_FFT: int = 2048
 """Matusiak's FFT length (§3.1: 2048 points, 1024 kernel values)."""
+
+ASYMPTOTIC_TAIL_POINTS: int = 5
+"""Number of last grid points on which the ``"asymptotic"`` tail's mixing weight is fitted."""
+
+ASYMPTOTIC_WEIGHT_RANGE: tuple[float, float] = (0.0, 2.0)
+"""Bounds of the ``"asymptotic"`` tail's weight a on ω⁻ⁿ (a ≥ 0 keeps the tail's sign)."""
 
 _UNIFORM_RTOL = 1e-6
 _CHUNK_ELEMENTS = 2_000_000
@@ -503,15 +528,61 @@ def _fit_tail_exponents(x: NDArray[np.float64], f: NDArray[np.float64]) -> NDArr
 
 
 def _power_tail(
-    x_end: float, f_end: NDArray[np.float64], p: NDArray[np.int64], t: NDArray[np.float64]
+    x_end: float,
+    f_end: NDArray[np.float64],
+    p: NDArray[np.int64],
+    t: NDArray[np.float64],
+    weight: NDArray[np.float64] | None = None,
 ) -> NDArray[np.complex128]:
-    """∫_{x_end}^∞ f_end (x_end/ω)^p e^{iωt} dω = f_end x_end E_p(−i x_end t), all t and columns."""
+    """∫_{x_end}^∞ f_end [a (x_end/ω)^p + (1 − a)(x_end/ω)^{p+2}] e^{iωt} dω, all t and columns.
+
+    = f_end x_end [a E_p(−i x_end t) + (1 − a) E_{p+2}(−i x_end t)]; ``weight`` = a per column
+    (None: a = 1, the pure power tail).
+    """
     out = np.zeros((t.size, f_end.size), dtype=complex)
+    a = np.ones(f_end.size) if weight is None else weight
+    cache: dict[int, NDArray[np.complex128]] = {}
+
+    def expint(q: int) -> NDArray[np.complex128]:
+        if q not in cache:
+            cache[q] = _expint_neg_imag(q, x_end * t)
+        return cache[q]
+
     for pk in np.unique(p):
         cols = p == pk
-        e = _expint_neg_imag(int(pk), x_end * t)
-        out[:, cols] = x_end * e[:, None] * f_end[None, cols]
+        e = expint(int(pk))[:, None] * a[None, cols]
+        if np.any(a[cols] != 1.0):
+            e = e + expint(int(pk) + 2)[:, None] * (1.0 - a[None, cols])
+        out[:, cols] = x_end * e * f_end[None, cols]
     return out
+
+
+def _asymptotic_weights(
+    x: NDArray[np.float64], f: NDArray[np.float64], p: NDArray[np.int64]
+) -> NDArray[np.float64]:
+    """Weight a of f ≈ f_end[a (x_end/ω)^p + (1 − a)(x_end/ω)^{p+2}] on the last grid points.
+
+    One-parameter least squares on the last :data:`ASYMPTOTIC_TAIL_POINTS` points (the value at
+    x_end is matched exactly, so the extension is continuous), clipped to
+    :data:`ASYMPTOTIC_WEIGHT_RANGE`; a = 1 (pure power) where f_end = 0 or x ≤ 0 in the window.
+    """
+    m = min(ASYMPTOTIC_TAIL_POINTS, x.size)
+    xs = x[-m:]
+    a = np.ones(f.shape[1])
+    if m < 2 or xs[0] <= 0.0:
+        return a
+    r = x[-1] / xs
+    lo, hi = ASYMPTOTIC_WEIGHT_RANGE
+    for j in range(f.shape[1]):
+        f_end = f[-1, j]
+        if f_end == 0.0:
+            continue
+        g = r ** p[j] - r ** (p[j] + 2)
+        y = f[-m:, j] / f_end - r ** (p[j] + 2)
+        den = float(np.dot(g, g))
+        if den > 0.0:
+            a[j] = float(np.clip(np.dot(g, y) / den, lo, hi))
+    return a
 
 
 def _hann_taper(x: NDArray[np.float64], fraction: float) -> NDArray[np.float64]:
@@ -536,8 +607,13 @@ def _kernel_transform(
     taper_fraction: float,
     n_fft: int,
     fft_oversample: float,
+    weight: NDArray[np.float64] | None = None,
 ) -> NDArray[np.float64]:
-    """(2/π) Re/Im ∫₀^∞ f(ω) e^{iωt} dω with the grid extension and tail rules of this module."""
+    """(2/π) Re/Im ∫₀^∞ f(ω) e^{iωt} dω with the grid extension and tail rules of this module.
+
+    ``weight``: the ``"asymptotic"`` tail's a per column (from :func:`_asymptotic_weights` of B,
+    so that the K and sine-form L tails extend the same B).
+    """
     x = omega
     if x[0] > 0.0:
         x = np.concatenate([[0.0], x])
@@ -547,6 +623,8 @@ def _kernel_transform(
     out = _quadrature(method, x, f, t, n_fft, fft_oversample)
     if tail == "power":
         out = out + _power_tail(float(x[-1]), f[-1], exponents, t)
+    elif tail == "asymptotic":
+        out = out + _power_tail(float(x[-1]), f[-1], exponents, t, weight)
     res = out.real if part == "real" else out.imag
     return (2.0 / np.pi) * res
 
@@ -596,10 +674,10 @@ def velocity_kernel(
         Times t ≥ 0 [s].
     method : {"filon", "simpson", "trapezoid", "fft"}
         Quadrature (module docstring; Filon: Gourlay eq. 4–10; FFT: Matusiak eq. 17–18).
-    tail : {"none", "power", "taper"}
+    tail : {"none", "power", "asymptotic", "taper"}
         High-frequency treatment beyond ω_max (module docstring).
     tail_exponent : int or "fit"
-        n of B ∝ ω⁻ⁿ for ``tail="power"``.
+        Leading n of B ∝ ω⁻ⁿ for ``tail="power"`` and ``tail="asymptotic"`` [-].
     taper_fraction : float
         Fraction of [0, ω_max] covered by the Hann taper for ``tail="taper"`` [-].
     n_fft, fft_oversample : int, float
@@ -615,6 +693,7 @@ def velocity_kernel(
     b = _as_samples(damping, w.size, "damping", "omega")
     tt = _as_times(t)
     b2 = b.reshape(w.size, -1)
+    exps = _tail_exponents(exponent, w, b2, 0)
     k = _kernel_transform(
         w,
         b2,
@@ -623,10 +702,11 @@ def velocity_kernel(
         part="real",
         method=method,
         tail=tail,
-        exponents=_tail_exponents(exponent, w, b2, 0),
+        exponents=exps,
         taper_fraction=taper_fraction,
         n_fft=n_fft,
         fft_oversample=fft_oversample,
+        weight=_asymptotic_weights(w, b2, exps) if tail == "asymptotic" else None,
     )
     return k.reshape((tt.size, *b.shape[1:]))
 
@@ -674,9 +754,11 @@ def acceleration_kernel(
     form : {"sine", "cosine"}
         Which of Gourlay's eq. 2/3 to evaluate.
     method, tail, tail_exponent, taper_fraction, n_fft, fft_oversample
-        As in :func:`velocity_kernel` (for the sine form the tail of B/ω is ∝ ω^{−(n+1)}; for
-        the cosine form the tail of A − A(∞) is ∝ ω⁻², ``tail_exponent`` only matters with
-        ``"fit"``, which then fits A − A(∞) itself).
+        As in :func:`velocity_kernel` (for the sine form the tail of B/ω is ∝ ω^{−(n+1)}, and
+        ``"asymptotic"`` adds ω^{−(n+3)} with the weight a fitted to B, as for K; for the
+        cosine form the tail of A − A(∞) is ∝ ω⁻² (``"asymptotic"``: ω⁻² and ω⁻⁴ with a fitted
+        to A − A(∞)), ``tail_exponent`` only matters with ``"fit"``, which then fits A − A(∞)
+        itself).
 
     Returns
     -------
@@ -706,6 +788,7 @@ def acceleration_kernel(
                 )
             f[0] = 0.0
         exps = _tail_exponents(exponent, w, b2, 1)
+        weight = _asymptotic_weights(w, b2, exps - 1) if tail == "asymptotic" else None
         low = np.zeros(f.shape[1])
         part: Literal["real", "imag"] = "imag"
     else:
@@ -728,6 +811,7 @@ def acceleration_kernel(
             exps = _fit_tail_exponents(w, f)
         else:
             exps = np.full(f.shape[1], COSINE_TAIL_EXPONENT, dtype=np.int64)
+        weight = _asymptotic_weights(w, f, exps) if tail == "asymptotic" else None
         low = f[0].copy()
         part = "real"
     out = _kernel_transform(
@@ -742,6 +826,7 @@ def acceleration_kernel(
         taper_fraction=taper_fraction,
         n_fft=n_fft,
         fft_oversample=fft_oversample,
+        weight=weight,
     )
     return out.reshape((tt.size, *trailing))
 

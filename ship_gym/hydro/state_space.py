@@ -31,9 +31,9 @@ Method (per DOF pair, SISO, assembled block-diagonally into a MIMO system)
 Pairs whose kernel is negligible (max|Kᵢⱼ| ≤ ``zero_tol``·√(max|Kᵢᵢ|·max|Kⱼⱼ|), e.g.
 surge–sway by port–starboard symmetry) get order 0. A ship at zero speed has 18 non-zero pairs of
 the 36; at 2–4 states each the total order is ≈ 40–70. Fit kernels computed with
-``tail="power"`` or ``tail="taper"`` (:mod:`ship_gym.hydro.retardation`): the 1/t truncation
-ringing left by ``tail="none"`` is not a sum of exponentials and costs several extra states per
-pair (a synthetic 6×6 case: 54 states with the power tail, 74–100 without).
+``tail="asymptotic"``, ``"power"`` or ``"taper"`` (:mod:`ship_gym.hydro.retardation`): the 1/t
+truncation ringing left by ``tail="none"`` is not a sum of exponentials and costs several extra
+states per pair (a synthetic 6×6 case: 54 states with the power tail, 74–100 without).
 
 Layout
 ------

@@ -233,15 +233,17 @@ def test_s175_imo_quick_check(service_setup):
     met = {c.name: c.passed for c in rows}
     assert met["advance"] and met["tactical diameter"], man.format_criteria(rows)
     assert met["10°/10° first overshoot"] and met["initial turning (10° rudder → 10° heading)"]
-    assert tc.advance_over_L == pytest.approx(2.972, abs=0.01)
-    assert tc.tactical_diameter_over_L == pytest.approx(3.032, abs=0.01)
-    assert z10.first_overshoot_deg == pytest.approx(5.66, abs=0.05)
+    # regression values (since issue #13: the forward-speed radiation terms, the asymptotic kernel
+    # tail and the symmetric FK triangulation moved them from 2.972 L, 3.032 L and 5.66°)
+    assert tc.advance_over_L == pytest.approx(2.939, abs=0.01)
+    assert tc.tactical_diameter_over_L == pytest.approx(2.965, abs=0.01)
+    assert z10.first_overshoot_deg == pytest.approx(5.73, abs=0.05)
 
 
 @pytest.mark.slow
 def test_s175_turning_circle_meets_imo(service_setup):
-    """35° turning circle at 10.36 m/s (Fn 0.25), 6 DOF, dt = 0.1 s: advance 2.97 L, transfer
-    1.40 L, tactical diameter 3.03 L (limits 4.5 L, 5 L) — typical of a fast container ship
+    """35° turning circle at 10.36 m/s (Fn 0.25), 6 DOF, dt = 0.1 s: advance 2.94 L, transfer
+    1.37 L, tactical diameter 2.97 L (limits 4.5 L, 5 L) — typical of a fast container ship
     with a 2 % L·T rudder."""
     res = man.turning_circle(service_setup, 35.0)
     assert res.approach_speed == pytest.approx(service_setup.speed, rel=1e-4)
@@ -261,7 +263,7 @@ def test_s175_turning_circle_meets_imo(service_setup):
 
 @pytest.mark.slow
 def test_s175_zigzags_meet_imo(service_setup):
-    """10°/10° zig-zag: first overshoot 5.66°, second 7.28° (limits 13.45° and 28.45° at
+    """10°/10° zig-zag: first overshoot 5.73°, second 7.52° (limits 13.45° and 28.45° at
     L/V = 16.9 s); initial turning 1.63 L (limit 2.5 L). 20°/20°: first overshoot 13.86°
     (limit 25°)."""
     z10 = man.zigzag(service_setup, 10.0, reversals=2)

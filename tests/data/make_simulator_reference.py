@@ -1,8 +1,9 @@
 """Regenerate ``simulator_reference.npz``: ship trajectories frozen for the engine's tests.
 
-The stored file was written by the single-ship Python ``Simulator`` of commit 6586197, before
-that class became the one-ship view of the engine; ``tests/engine/test_engine_reference.py``
-checks that the engine still produces them. Rerun only on purpose (a physics change), from the
+The first stored file was written by the single-ship Python ``Simulator`` of commit 6586197,
+before that class became the one-ship view of the engine; it was regenerated with this script
+at the physics changes of issue #13. ``tests/engine/test_engine_reference.py`` checks that the
+engine still produces them. Rerun only on purpose (a physics change), from the
 repository root: ``python tests/data/make_simulator_reference.py``.
 """
 
@@ -102,8 +103,8 @@ for name, c in CASES.items():
     out[f"{name}/eta"] = np.array(eta)
     out[f"{name}/nu"] = np.array(nu)
     for f in sim.forces:
-        if hasattr(f, "angle"):
-            out[f"{name}/angle/{f.name}"] = np.array(float(f.angle))
+        if hasattr(f, "angle"):  # a servo-driven actuator: its angle lives in the engine
+            out[f"{name}/angle/{f.name}"] = np.array(float(sim.actuator_angle(f.name)))
     print(
         name, np.abs(np.array(eta)[-1]).round(4), [k for k in out if k.startswith(name + "/angle")]
     )

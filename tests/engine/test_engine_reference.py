@@ -1,13 +1,16 @@
 """The engine against trajectories frozen from the retired single-ship Python simulator.
 
-``tests/data/simulator_reference.npz`` holds S175 runs written by the Python ``Simulator`` of
-commit 6586197 (its own RK4/Holloway integrators, one Python call per force model), before that
-class became the one-ship view of the engine. The engine must reproduce them — one ship alone
-(:func:`build_simulator`) and the same ship inside a batch whose other ship sails another sea
-(:func:`build_batch_simulator`) — to 1e-12 of each DOF's range in float64 (issue #11: "the
-engine equals today's Simulator ... to ≤ 1e-12 relative"; measured 4e-15–3e-13). The Cummins
-convolution case runs the convolution model itself per ship (numpy path): its history sums are
-ordered differently, 1e-10 (measured 7e-12).
+``tests/data/simulator_reference.npz`` holds S175 runs. The first version was written by the
+Python ``Simulator`` of commit 6586197 (its own RK4/Holloway integrators, one Python call per
+force model), before that class became the one-ship view of the engine, and the engine
+reproduced it to 4e-15–3e-13 of each DOF's range (issue #11). It was regenerated on purpose
+at the physics changes of issue #13 (forward-speed Kirchhoff moment, diffraction at the wave
+frequency, mirror-symmetric Froude–Krylov triangulation, the asymptotic kernel tail) with the
+same generator (``tests/data/make_simulator_reference.py``, its commit recorded in the file).
+The engine must reproduce them — one ship alone (:func:`build_simulator`) and the same ship
+inside a batch whose other ship sails another sea (:func:`build_batch_simulator`) — to 1e-12 of
+each DOF's range in float64. The Cummins convolution case runs the convolution model itself
+per ship (numpy path): its history sums are ordered differently, 1e-10 (measured 7e-12).
 """
 
 from __future__ import annotations

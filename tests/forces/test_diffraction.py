@@ -158,15 +158,20 @@ def test_encounter_frequency_in_head_seas(db, table):
     w_e = float(encounter_frequency(w, speed, math.pi, g))
     assert w_e == pytest.approx(omega[i]) and w_e > w
     field = WaveField.from_components([0.9], [w], [math.pi], [0.0], ramp_time=0.0, g=g)
-    model = Diffraction(db, field)
+    model = Diffraction(db, field, frequency="encounter")
     for t in TIMES:
         f, _ = model.evaluate(ctx_at(t, field, x=speed * t, speed=speed), np.zeros(0))
         expected = np.real(x[i, j] * 0.9 * np.exp(-1j * w_e * t))
         np.testing.assert_allclose(f, expected, rtol=1e-9, atol=1e-9 * np.abs(x[i, j]).max())
     np.testing.assert_allclose(model.omega_lookup, [w_e])
-    # frequency="wave" looks X_D up at ω instead
-    wave = Diffraction(db, field, frequency="wave")
-    wave.evaluate(ctx_at(0.0, field, speed=speed), np.zeros(0))
+    # the default, frequency="wave", looks X_D up at ω (the incident pattern), and the force
+    # still oscillates at ω_e: F = Re(X_D(ω, π) a e^{−iω_e t})
+    wave = Diffraction(db, field)
+    x_w = wave.diffraction_transfer(w, math.pi)
+    for t in TIMES:
+        f, _ = wave.evaluate(ctx_at(t, field, x=speed * t, speed=speed), np.zeros(0))
+        expected = np.real(x_w * 0.9 * np.exp(-1j * w_e * t))
+        np.testing.assert_allclose(f, expected, rtol=1e-9, atol=1e-9 * np.abs(x_w).max())
     np.testing.assert_allclose(wave.omega_lookup, [w])
 
 
@@ -176,7 +181,7 @@ def test_negative_encounter_frequency_uses_conjugate(db):
     w_e = float(encounter_frequency(w, speed, 0.0, g))
     assert w_e < 0
     field = WaveField.from_components([1.0], [w], [0.0], [0.0], ramp_time=0.0, g=g)
-    model = Diffraction(db, field)
+    model = Diffraction(db, field, frequency="encounter")
     x_d = model.diffraction_transfer(abs(w_e), 0.0)
     for t in TIMES:
         f, _ = model.evaluate(ctx_at(t, field, x=speed * t, speed=speed), np.zeros(0))
@@ -204,7 +209,7 @@ def test_frequency_range_extension(db, table):
 
 def test_heading_cache_tolerance(db):
     field = regular(1.0, 0.7, 2.0)
-    model = Diffraction(db, field, heading_tolerance_deg=0.5)
+    model = Diffraction(db, field, heading_tolerance_deg=0.5, frequency="encounter")
     model.evaluate(ctx_at(0.0, field, psi=0.0), np.zeros(0))
     b0 = model.beta_lookup.copy()
     model.evaluate(ctx_at(0.0, field, psi=math.radians(0.3)), np.zeros(0))

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ship_gym.conventions import HEAVE, PITCH, ROLL
+from ship_gym.conventions import HEAVE, PITCH, ROLL, SURGE, SWAY, YAW
 from ship_gym.forces.base import ForceContext
 from ship_gym.forces.radiation import (
     ConstantCoefficientRadiation,
@@ -31,6 +31,9 @@ from ship_gym.forces.radiation import (
 )
 from ship_gym.hydro import as_arrays, load_database
 from ship_gym.waves import encounter_frequency
+
+LAMBDA0 = np.zeros(2)
+"""Convolution states λ (heave, sway) at rest: the model integrates the radiated momentum."""
 
 
 # ------------------------------------------------------------------------------ fixtures
@@ -176,7 +179,7 @@ def test_rk4_stage_evaluation_matches_fine_reference(conv01):
     t_n = 30.0
     model.reset(0.0, make_ctx(0.0, velocity(0.0)))
     for i in range(1, round(t_n / dt) + 1):
-        model.commit(make_ctx(i * dt, velocity(i * dt)), None)
+        model.commit(make_ctx(i * dt, velocity(i * dt)), LAMBDA0)
 
     def reference(t):
         tau = np.linspace(0.0, t, 20001)
@@ -187,16 +190,16 @@ def test_rk4_stage_evaluation_matches_fine_reference(conv01):
     errors = {}
     for frac in (0.0, 0.5, 1.0):
         t = t_n + frac * dt
-        force, _ = model.evaluate(make_ctx(t, velocity(t)), None)
+        force, _ = model.evaluate(make_ctx(t, velocity(t)), LAMBDA0)
         ref = reference(t)
         errors[frac] = np.max(np.abs(force - ref)) / np.max(np.abs(ref))
     assert max(errors.values()) < 4e-3, errors
     assert errors[0.5] < 1.5 * max(errors[0.0], errors[1.0]), errors
 
     t = t_n + dt
-    before, _ = model.evaluate(make_ctx(t, velocity(t)), None)
-    model.commit(make_ctx(t, velocity(t)), None)
-    after, _ = model.evaluate(make_ctx(t, velocity(t)), None)
+    before, _ = model.evaluate(make_ctx(t, velocity(t)), LAMBDA0)
+    model.commit(make_ctx(t, velocity(t)), LAMBDA0)
+    after, _ = model.evaluate(make_ctx(t, velocity(t)), LAMBDA0)
     np.testing.assert_allclose(before, after, rtol=1e-12, atol=1e-12 * np.max(np.abs(after)))
 
 
@@ -205,28 +208,54 @@ def test_convolution_uses_the_current_stage_velocity(conv01):
     model = conv01
     model.reset(0.0, make_ctx(0.0, np.zeros(6)))
     for i in range(1, 11):
-        model.commit(make_ctx(0.1 * i, np.full(6, 0.1)), None)
+        model.commit(make_ctx(0.1 * i, np.full(6, 0.1)), LAMBDA0)
     h = 0.05
-    base, _ = model.evaluate(make_ctx(1.0 + h, np.full(6, 0.1)), None)
+    base, _ = model.evaluate(make_ctx(1.0 + h, np.full(6, 0.1)), LAMBDA0)
     dv = np.zeros(6)
     dv[HEAVE] = 1.0
-    pert, _ = model.evaluate(make_ctx(1.0 + h, np.full(6, 0.1) + dv), None)
+    pert, _ = model.evaluate(make_ctx(1.0 + h, np.full(6, 0.1) + dv), LAMBDA0)
     expected = -(h / 2) * model.kernel_at(0.0) @ dv
+    # and the Kirchhoff moment u Lᵀ A(∞) dv of the ship's surge velocity u = 0.1 m/s (pitch row)
+    expected[PITCH] += 0.1 * model.A_inf[HEAVE] @ dv
+    expected[YAW] -= 0.1 * model.A_inf[SWAY] @ dv
     np.testing.assert_allclose(pert - base, expected, rtol=1e-9, atol=1e-12 * np.abs(base).max())
 
 
 # ------------------------------------------------------------------------------ modes, errors
 def test_state_space_derivatives_and_forward_speed(ss):
-    """ż = A z + B ν_p and F = −C z with ν_p = ν − (U, 0, …): a ship at U has no memory input."""
+    """ż = A z + B ν_p with ν_p = ν − (U, 0, …): a ship at U has no memory input; the force is
+    −C z plus the Kirchhoff moment u Lᵀ P of the radiated momentum (ship_gym.hydro.forward_speed
+    eq. 2): pitch +u P_heave, yaw −u P_sway, u the ship's surge velocity; P = A(∞) E ν_p + λ
+    holds no surge share (E), λ = C A⁻¹ z the memory's momentum."""
     sys = ss.state_space
     rng = np.random.default_rng(2)
-    z = rng.normal(size=ss.n_states)
-    force, zdot = ss.evaluate(make_ctx(3.0, np.zeros(6), speed=7.5), z)
-    np.testing.assert_allclose(zdot, sys.A @ z, rtol=1e-12)
-    np.testing.assert_allclose(force, -sys.C @ z, rtol=1e-12)
+    u = 7.5
+    lam = np.linalg.solve(sys.A.T, sys.C.T).T  # λ = Λ z
+    # memory states as left by a steady non-surge velocity history: their momentum is Λ z
+    v_hist = rng.normal(size=6)
+    v_hist[SURGE] = 0.0
+    z = -np.linalg.solve(sys.A, sys.B @ v_hist)
     v = rng.normal(size=6)
-    _, zdot = ss.evaluate(make_ctx(3.0, v, speed=7.5), z)
-    np.testing.assert_allclose(zdot, sys.A @ z + sys.B @ v, rtol=1e-12)
+    force, zdot = ss.evaluate(make_ctx(3.0, v, speed=u), z)
+    np.testing.assert_allclose(zdot, sys.A @ z + sys.B @ v, rtol=1e-12, atol=1e-12)
+    ev = v.copy()
+    ev[SURGE] = 0.0
+    p = lam @ z + ss.A_inf @ ev
+    expected = -sys.C @ z
+    surge = u + v[SURGE]  # the moment takes the ship's own surge velocity (Kirchhoff's −v × P)
+    expected[PITCH] += surge * p[HEAVE]
+    expected[YAW] -= surge * p[SWAY]
+    np.testing.assert_allclose(force, expected, rtol=1e-9, atol=1e-9 * np.abs(expected).max())
+    # states left by a steady surge velocity carry no momentum: the memory force alone
+    z_surge = -np.linalg.solve(sys.A, sys.B[:, SURGE])
+    only_surge = np.zeros(6)
+    only_surge[SURGE] = 1.0
+    force, _ = ss.evaluate(make_ctx(3.0, only_surge, speed=u), z_surge)
+    np.testing.assert_allclose(force, -sys.C @ z_surge, rtol=1e-12, atol=1e-6)
+    # a ship with no surge velocity feels the memory alone
+    v[SURGE] = 0.0
+    force0, _ = ss.evaluate(make_ctx(3.0, v, speed=0.0), z)
+    np.testing.assert_allclose(force0, -sys.C @ z, rtol=1e-12)
 
 
 def test_fit_and_kernel_reports(conv01, ss):
@@ -246,25 +275,28 @@ def test_convolution_errors(db, conv01):
         RadiationMemory(db, method="fft")
     fresh = RadiationMemory(db, method="convolution", dt=0.1)
     with pytest.raises(ValueError, match="reset"):
-        fresh.evaluate(make_ctx(0.0, np.zeros(6)), None)
+        fresh.evaluate(make_ctx(0.0, np.zeros(6)), LAMBDA0)
     conv01.reset(0.0, make_ctx(0.0, np.zeros(6)))
-    conv01.commit(make_ctx(0.1, np.zeros(6)), None)
-    conv01.commit(make_ctx(0.1, np.ones(6)), None)  # same time: replaces the sample
+    conv01.commit(make_ctx(0.1, np.zeros(6)), LAMBDA0)
+    conv01.commit(make_ctx(0.1, np.ones(6)), LAMBDA0)  # same time: replaces the sample
     with pytest.raises(ValueError, match="uniform steps"):
-        conv01.commit(make_ctx(0.25, np.zeros(6)), None)
+        conv01.commit(make_ctx(0.25, np.zeros(6)), LAMBDA0)
     with pytest.raises(ValueError, match="uniform steps"):
-        conv01.commit(make_ctx(0.3, np.zeros(6)), None)
+        conv01.commit(make_ctx(0.3, np.zeros(6)), LAMBDA0)
     with pytest.raises(ValueError, match="outside the step"):
-        conv01.evaluate(make_ctx(0.35, np.zeros(6)), None)
+        conv01.evaluate(make_ctx(0.35, np.zeros(6)), LAMBDA0)
     with pytest.raises(ValueError, match="outside the step"):
-        conv01.evaluate(make_ctx(0.05, np.zeros(6)), None)
+        conv01.evaluate(make_ctx(0.05, np.zeros(6)), LAMBDA0)
 
 
 def test_empty_integral_at_reset_time(conv01):
-    conv01.reset(5.0, make_ctx(5.0, np.ones(6)))
-    force, states_dot = conv01.evaluate(make_ctx(5.0, np.ones(6)), None)
+    v = np.ones(6)
+    v[0] = 0.0  # no surge velocity: no Kirchhoff moment on the momentum A(∞) ν_p
+    conv01.reset(5.0, make_ctx(5.0, v))
+    force, states_dot = conv01.evaluate(make_ctx(5.0, v), LAMBDA0)
     np.testing.assert_array_equal(force, 0.0)
-    assert states_dot.shape == (0,)
+    assert states_dot.shape == (2,)  # λ̇ = μ (heave, sway): zero at t₀
+    np.testing.assert_array_equal(states_dot, 0.0)
 
 
 # ------------------------------------------------------------------------------ case 2

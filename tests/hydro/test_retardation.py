@@ -249,12 +249,13 @@ def test_cosine_form_keeps_truncation_error_sine_form_decays():
     assert np.max(np.abs(lc - l_ref)[late]) > 5 * np.max(np.abs(ls - l_ref)[late])
 
 
-@pytest.mark.parametrize("tail", ["none", "power"])
+@pytest.mark.parametrize("tail", ["none", "power", "asymptotic"])
 def test_velocity_kernel_is_derivative_of_acceleration_kernel(tail):
     # Central difference with δ = 1e-3 s has truncation error δ²/6·max|L'''| ≈ 1e-7 and
     # round-off 1e-16/δ; the two Filon errors O(Δω⁴) differ by ≈ 1e-6 (measured 1.3e-6)
     # → tolerance 1e-5 (K_max = 0.125). With the power tail both tails are integrated
-    # analytically and consistent (B ∝ ω⁻ⁿ for K, B/ω ∝ ω^{−(n+1)} for L).
+    # analytically and consistent (B ∝ ω⁻ⁿ for K, B/ω ∝ ω^{−(n+1)} for L); the asymptotic
+    # tail extends the same B (one weight a from B) for both, so it must pass the same bound.
     w = np.arange(0.0, 4.0 + 1e-9, 0.05)
     t = np.linspace(0.5, 20.0, 40)
     d = 1e-3

@@ -584,19 +584,6 @@ def _linear_params(with_dofs: bool):
                         ),
                     )
                 )
-            if with_dofs and (index, heading, dof) == (20, 135, PITCH):
-                marks.append(
-                    pytest.mark.xfail(
-                        strict=True,
-                        reason=(
-                            "known deviation: bow-quartering pitch at ω = 0.877 rad/s is 2.10 % "
-                            "(amplitude +0.2 %, phase −1.2°) since the state-space fit imposes "
-                            "zero damping at ω = 0 and non-negative diagonal damping (1.90 % "
-                            "with the unconstrained fit; 158 or 175 states do not change it): "
-                            "the memory's pitch coupling, not the fit order"
-                        ),
-                    )
-                )
             ident = f"w{index}-beta{heading}" + ("" if dof is None else f"-{'zrp'[dof - 2]}")
             args = (index, heading, dof) if with_dofs else (index, heading)
             params.append(pytest.param(*args, marks=marks, id=ident))

@@ -1,0 +1,223 @@
+"""Seakeeping at forward speed (issue #13): the time domain's linear limit against the solver,
+and the solver against published strip theory for the S175.
+
+1. Linear limit at Fn 0.2 and 0.3 in head (180°), bow (135°), beam (90°) and quartering (45°)
+   regular seas: the time-domain engine (nonlinear FK + hydrostatics at a = 0.1 m, state-space
+   radiation memory with the Kirchhoff forward-speed moment, diffraction at the wave frequency,
+   linear viscous roll; surge at U, sway and yaw held) against the frequency-domain RAO of
+   :func:`ship_gym.hydro.rao.response_amplitude_operator` at the same speed. Both implement the
+   one linearisation of :mod:`ship_gym.hydro.forward_speed`; criterion 2 % (the zero-speed
+   criterion of tests/validation/test_simulator_validation.py, where the remaining differences
+   are the FK quadrature and the memory fit).
+2. The solver against ShipX/VERES strip theory for the S175 in head seas at Fn 0.186 and 0.248
+   (tests/data/s175_head_seas_veres_mss_*.csv, from the Marine Systems Simulator; a computation,
+   not model tests): heave and pitch peaks within 15 % (the issue's criterion), and the same
+   comparison without the forward-speed moment misses it (so the test can fail).
+"""
+
+from __future__ import annotations
+
+import functools
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ship_gym.engine.ship import wave_field_for
+from ship_gym.engine.simulator import Simulator
+from ship_gym.hydro.rao import natural_frequency, response_amplitude_operator
+from ship_gym.kinematics import encounter_frequency
+from ship_gym.waves.sea_state import RegularWave
+
+from .test_simulator_validation import (
+    AMPLITUDE,
+    HEAVE,
+    HOLD_HORIZONTAL,
+    LINEAR_DT,
+    PITCH,
+    ROLL,
+    fit_harmonic,
+    ikeda_b1,
+    linear_forces,
+    s175,
+)
+
+LPP = 175.0
+G = 9.81
+DATA = Path(__file__).resolve().parents[1] / "data"
+
+# dominant DOFs per heading. Beam seas: heave only — the beam-sea roll is the known FK-quadrature
+# deviation of the zero-speed test (≈ 12.5 %, checked below to be unchanged by speed) and the
+# beam-sea pitch is tiny (≈ 0.01 rad/m, where the same quadrature gives 2–5 %).
+DOMINANT = {180: (HEAVE, PITCH), 135: (HEAVE, ROLL, PITCH), 90: (HEAVE,), 45: (HEAVE, ROLL, PITCH)}
+
+
+def speed_of(froude: float) -> float:
+    return froude * np.sqrt(G * LPP)
+
+
+@functools.cache
+def linear_run_at_speed(index: int, heading_deg: int, froude: float) -> tuple:
+    """(time-domain, frequency-domain) complex amplitudes per unit wave amplitude (6,) each.
+
+    The steady state is fitted over the last whole encounter periods of ≥ 120 s. Quartering seas
+    meet the waves near the roll resonance (ω_e → ω_φ ≈ 0.35 rad/s) where the roll transient
+    decays over 1/(ζ ω_φ) ≈ 300 s: those runs last 900 s (1800 s within 0.1 rad/s of ω_φ), the
+    others 300 s.
+    """
+    s = s175()
+    u = speed_of(froude)
+    beta = np.radians(heading_deg)
+    omega = float(s.arr.omega[index])
+    w_e = float(encounter_frequency(omega, u, beta, G))
+    wave = RegularWave(2 * AMPLITUDE, period=2 * np.pi / omega)
+    field = wave_field_for(wave, beta)
+    sim = Simulator(
+        s.hull,
+        linear_forces(field),
+        wave_field=field,
+        dt=LINEAR_DT,
+        free_dofs=HOLD_HORIZONTAL,
+        forward_speed=u,
+    )
+    sim.reset(eta=s.base)
+    near_roll = abs(abs(w_e) - natural_frequency(s.db, "Roll")) < 0.1
+    duration = 1800.0 if heading_deg < 90 and near_roll else 900.0 if heading_deg < 90 else 300.0
+    res = sim.run(duration)
+    period = 2 * np.pi / abs(w_e)
+    t_start = duration - max(1.0, np.floor(120.0 / period)) * period
+    td = np.zeros(6, complex)
+    for dof in (HEAVE, ROLL, PITCH):
+        td[dof] = fit_harmonic(res.t, res.eta[:, dof] - s.base[dof], w_e, t_start) / AMPLITUDE
+    fd = response_amplitude_operator(
+        s.db,
+        omega=omega,
+        heading=beta,
+        forward_speed=u,
+        extra_damping=np.diag([0, 0, 0, ikeda_b1(), 0, 0]),
+        free_dofs=HOLD_HORIZONTAL,
+    )[0]
+    return td, fd, w_e
+
+
+def _cases():
+    out = []
+    for index in (16, 12):  # ω = 0.710 rad/s (λ/L = 0.70), 0.543 rad/s (λ/L = 1.19)
+        for froude in (0.2, 0.3):
+            for heading in (180, 135, 90, 45):
+                marks = [pytest.mark.slow] if index == 12 else []
+                ident = f"w{index}-fn{froude}-beta{heading}"
+                out.append(pytest.param(index, froude, heading, marks=marks, id=ident))
+    return out
+
+
+@pytest.mark.parametrize(("index", "froude", "heading"), _cases())
+def test_linear_limit_at_speed_matches_frequency_domain(index, froude, heading):
+    # Measured (ω index 16; heave / roll / pitch): Fn 0.2 head 0.5 / – / 1.7 %, bow 0.5 / 0.8 /
+    # 1.5 %, beam 0.3 / – / –, quartering 0.8 / 0.6 / 0.7 %; Fn 0.3 head 0.5 / – / 1.2 %, bow
+    # 0.3 / 0.9 / 1.5 %, beam 0.4, quartering 0.8 / 1.0 / 0.5 %. Before the forward-speed
+    # linearisation the two differed by up to +115 % in heave at Fn 0.186 (issue #13).
+    td, fd, w_e = linear_run_at_speed(index, heading, froude)
+    w_roll = natural_frequency(s175().db, "Roll")
+    for dof in DOMINANT[heading]:
+        if dof == ROLL and abs(abs(w_e) - w_roll) < 0.03:
+            # at the roll resonance (ζ ≈ 1 %) the steady state needs > 1000 s; not a linear-limit
+            # check any more but one of the transient (measured: 15 % at 900 s, ω index 12)
+            continue
+        err = abs(td[dof] - fd[dof]) / abs(fd[dof])
+        assert err < 0.02, (
+            f"DOF {dof}: |ξ_td − ξ_fd|/|ξ_fd| = {err:.2%} at ω_e = {w_e:.3f} rad/s "
+            f"(|ξ_td/ξ_fd| = {abs(td[dof] / fd[dof]):.4f}, phase "
+            f"{np.degrees(np.angle(td[dof] / fd[dof])):+.2f}°)"
+        )
+    if heading == 90:
+        # the zero-speed FK-quadrature deviation of beam-sea roll (12.5–12.7 % at this ω), no more
+        err = abs(td[ROLL] - fd[ROLL]) / abs(fd[ROLL])
+        assert err == pytest.approx(0.126, abs=0.01)
+
+
+# ------------------------------------------------------------------------ strip theory (VERES)
+def veres(tag: str) -> dict[str, np.ndarray]:
+    """Columns of a VERES reference file (# comment lines, one header line, then numbers)."""
+    lines = (DATA / f"s175_head_seas_veres_mss_fn{tag}.csv").read_text().splitlines()
+    rows = [line for line in lines if line and not line.startswith("#")][1:]
+    raw = np.array([[float(v) for v in row.split(",")] for row in rows])
+    return {"lambda_l": raw[:, 0], "omega": raw[:, 1], "heave": raw[:, 4], "pitch": raw[:, 5]}
+
+
+def solver_heave_pitch(omega: np.ndarray, u: float, speed_terms: str = "all") -> tuple:
+    """Heave at the centre of gravity [m/m] and pitch / k [-] in head seas, heave–pitch free."""
+    s = s175()
+    xi = response_amplitude_operator(
+        s.db, omega=omega, heading=np.pi, forward_speed=u, free_dofs=("Heave", "Pitch"),
+        speed_terms=speed_terms,  # type: ignore[arg-type]
+    )  # fmt: skip
+    x_g = float(s.hull.mass.cog[0])  # VERES gives motions about the CG: z_G = z_O − x_G θ
+    k = omega**2 / G
+    return np.abs(xi[:, HEAVE] - x_g * xi[:, PITCH]), np.abs(xi[:, PITCH]) / k
+
+
+@pytest.mark.parametrize(("tag", "froude"), [("0p186", 0.1862), ("0p248", 0.2483)])
+def test_head_sea_peaks_against_strip_theory(tag, froude):
+    # Measured: Fn 0.186 heave peak 1.115 vs 1.096 (+1.7 %), pitch 1.158 vs 1.118 (+3.6 %);
+    # Fn 0.248 heave 1.452 vs 1.468 (−1.1 %), pitch 1.204 vs 1.210 (−0.5 %), at the same λ/L.
+    # Without the Kirchhoff moment (speed_terms="none", the former time domain's model) the peaks
+    # are 14–18 % high: 1.250 / 1.310 and 1.714 / 1.418.
+    ref = veres(tag)
+    u = speed_of(froude)
+    s = s175()
+    w_max = float(s.arr.omega[-1])
+    keep = (ref["lambda_l"] > 0.5) & (ref["omega"] + ref["omega"] ** 2 * u / G <= w_max)
+    omega = ref["omega"][keep]
+    heave, pitch = solver_heave_pitch(omega, u)
+    for name, ours, theirs in (
+        ("heave", heave, ref["heave"][keep]),
+        ("pitch", pitch, ref["pitch"][keep]),
+    ):
+        assert ours.max() == pytest.approx(theirs.max(), rel=0.15), name
+    # the heave peak sits at the same wave length (±1 grid step of the reference; the pitch
+    # curves are flat at their maximum, 1.20–1.21 over λ/L 1.39–1.63 in the reference)
+    i, j = int(np.argmax(heave)), int(np.argmax(ref["heave"][keep]))
+    assert abs(i - j) <= 1, f"heave peak at λ/L {ref['lambda_l'][keep][[i, j]]}"
+    heave0, _ = solver_heave_pitch(omega, u, "none")
+    assert heave0.max() > 1.12 * ref["heave"][keep].max()
+
+
+def test_long_waves_at_zero_speed_against_strip_theory():
+    # quasi-static limit: heave → 1, pitch/k → 1 (both codes): within 5 % for λ/L > 3
+    ref = veres("0p000")
+    keep = ref["lambda_l"] > 3.0
+    heave, pitch = solver_heave_pitch(ref["omega"][keep], 0.0)
+    np.testing.assert_allclose(heave, ref["heave"][keep], rtol=0.05)
+    np.testing.assert_allclose(pitch, ref["pitch"][keep], rtol=0.06)
+
+
+def test_a_ship_at_another_speed_than_the_build_speed():
+    # Item 4 of issue #13: ships of one engine at different per-episode speeds. Kirchhoff's
+    # moment takes each ship's own surge velocity and no momentum of the surge offset u − U, so
+    # a ship at 10.36 m/s in an engine built for 8.28 m/s moves as in an engine built for
+    # 10.36 m/s; what remains is the memory of the constant surge offset, whose steady force is
+    # the fit's B(0) (≈ 1e-8 of the pair scale). Tolerance 1e-6 of the motion (measured ≈ 1e-11
+    # on a pitch-rate kick; before the surge share was left out: 2 % in pitch).
+    from ship_gym.engine.batch import BatchSimulator
+    from ship_gym.engine.simulator import engine_model
+
+    s = s175()
+    omega = float(s.arr.omega[14])
+    field = wave_field_for(RegularWave(2 * AMPLITUDE, period=2 * np.pi / omega), np.pi)
+    u_build, u_ship = 8.28, 10.36
+
+    def run(speeds: list[float], build: float) -> np.ndarray:
+        models = [engine_model(f) for f in linear_forces(field)]
+        sim = BatchSimulator(s.hull, models, [field] * len(speeds), forward_speed=build,
+                             dt=LINEAR_DT, free_dofs=HOLD_HORIZONTAL)  # fmt: skip
+        nu = np.zeros((len(speeds), 6))
+        nu[:, 0] = speeds
+        sim.reset(eta=np.tile(s.base, (len(speeds), 1)), nu=nu)
+        return sim.run(2000)["eta"][:, -1]
+
+    mixed = run([u_build, u_ship], u_build)
+    alone = run([u_ship], u_ship)
+    for dof in (HEAVE, PITCH):
+        scale = np.ptp(alone[1000:, dof])
+        assert np.abs(mixed[:, dof] - alone[:, dof]).max() < 1e-6 * scale, dof
