@@ -17,6 +17,7 @@ from ship_gym.hydro.database import (
     open_database,
     save_database,
     split_frequencies,
+    symmetrise,
 )
 from ship_gym.hydro.wamit import read_wamit
 
@@ -33,6 +34,7 @@ __all__ = [
     "read_wamit",
     "save_database",
     "split_frequencies",
+    "symmetrise",
     "validate_database",
 ]
 

@@ -409,6 +409,9 @@ def load_database(
 ) -> xr.Dataset:
     """Load a bundled database by name (e.g. ``"s175"``) or any database file by path.
 
+    A bundled database of a port/starboard symmetric hull (every library hull) is returned
+    :func:`symmetrise`-d; a file given by path is returned as stored.
+
     Parameters
     ----------
     name_or_path : str or os.PathLike
@@ -448,7 +451,12 @@ def load_database(
             "It is built by the database script in scripts/ (compute_hull_database + "
             "save_database); run it first, or pass a path to a database file"
         )
-    return open_database(path, validate=validate, **checks)
+    ds = open_database(path, validate=validate, **checks)
+    # the library hulls are port/starboard symmetric: remove the BEM's round-off asymmetry
+    try:
+        return symmetrise(ds)
+    except ValueError:  # not a symmetric hull: nothing to impose
+        return ds
 
 
 # ------------------------------------------------------------------------------ accessors
@@ -546,6 +554,88 @@ def as_arrays(ds: xr.Dataset) -> HydroArrays:
     )
 
 
+def _asymmetry(ds: xr.Dataset, rtol: float) -> float:
+    """Largest symmetric–antisymmetric added-mass coupling over the diagonal scale [-];
+    ValueError beyond ``rtol`` (the hull is not port/starboard symmetric)."""
+    finite, _, _ = split_frequencies(ds)
+    a = finite["added_mass"].sel(influenced_dof=list(DOF_NAMES), radiating_dof=list(DOF_NAMES))
+    a = np.abs(a.values)
+    diag = np.sqrt(np.einsum("kii->i", a) / max(len(a), 1))
+    scale = np.outer(diag, diag)
+    m = frames.mirror_signs()
+    odd = np.outer(m, m) < 0
+    ratio = float(np.max(a[:, odd] / np.maximum(scale[odd], np.finfo(float).tiny)))
+    if ratio > rtol:
+        raise ValueError(
+            f"hull does not look port/starboard symmetric: symmetric-antisymmetric added-mass "
+            f"couplings reach {ratio:.3g} of the diagonal scale (> rtol = {rtol})"
+        )
+    return ratio
+
+
+def symmetrise(ds: xr.Dataset, *, rtol: float = 1e-2) -> xr.Dataset:
+    """Impose the port/starboard symmetry of the hull exactly on a database.
+
+    A BEM run on a symmetric hull leaves round-off in what symmetry makes zero (≈ 2e-5 of the
+    diagonal scale for the bundled S175): couplings between the symmetric (surge, heave, pitch)
+    and antisymmetric (sway, roll, yaw) modes in every (influenced_dof, radiating_dof) matrix,
+    and, in head and following seas, sway/roll/yaw wave forces. Left in, they roll a ship in
+    head seas (≈ 1e-5 rad). This zeroes those couplings and replaces each wave force by its
+    symmetric part, F_i(β) ← ½[F_i(β) + m_i F_i(2π − β)] with m = (1, −1, 1, −1, 1, −1), for
+    every stored heading whose mirror is stored too (β = 0 and π are their own mirrors, so their
+    antisymmetric components become exactly 0).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Database in our frame (:mod:`ship_gym.hydro.database` schema).
+    rtol : float
+        Largest coupling (relative to the diagonal scale) still taken for round-off.
+
+    Returns
+    -------
+    xarray.Dataset
+        A copy with ``attrs["port_starboard_symmetrised"]`` recording the largest coupling
+        removed.
+
+    Raises
+    ------
+    ValueError
+        If the couplings exceed ``rtol``: the hull is not symmetric.
+    """
+    ratio = _asymmetry(ds, rtol)
+    out = ds.copy(deep=True)
+    m = frames.mirror_signs()
+    odd = xr.DataArray(
+        np.outer(m, m) < 0,
+        dims=("influenced_dof", "radiating_dof"),
+        coords={"influenced_dof": list(DOF_NAMES), "radiating_dof": list(DOF_NAMES)},
+    )
+    for name, var in ds.data_vars.items():
+        if {"influenced_dof", "radiating_dof"} <= set(var.dims):
+            mask = odd.sel(influenced_dof=var["influenced_dof"], radiating_dof=var["radiating_dof"])
+            out[name] = var.where(~mask, 0.0).assign_attrs(var.attrs)
+        elif {"influenced_dof", "wave_direction"} <= set(var.dims):
+            beta = np.mod(var["wave_direction"].values.astype(float), 2.0 * np.pi)
+            sign = xr.DataArray(
+                m, dims=("influenced_dof",), coords={"influenced_dof": list(DOF_NAMES)}
+            ).sel(influenced_dof=var["influenced_dof"])
+            fixed = var.copy()
+            for k, b in enumerate(beta):
+                mirror = np.flatnonzero(np.isclose(beta, np.mod(2.0 * np.pi - b, 2.0 * np.pi),
+                                                   rtol=0.0, atol=1e-9))  # fmt: skip
+                if mirror.size:
+                    here = var.isel(wave_direction=k)
+                    there = var.isel(wave_direction=int(mirror[0]))
+                    fixed[{"wave_direction": k}] = 0.5 * (here + sign * there)
+            out[name] = fixed.assign_attrs(var.attrs)
+    out.attrs = dict(ds.attrs)
+    out.attrs["port_starboard_symmetrised"] = (
+        f"symmetric-antisymmetric couplings up to {ratio:.3g} of the diagonal scale zeroed"
+    )
+    return out
+
+
 def mirror_headings(ds: xr.Dataset, *, rtol: float = 1e-2) -> xr.Dataset:
     """Complete the headings of a port/starboard symmetric hull to the full circle.
 
@@ -562,19 +652,8 @@ def mirror_headings(ds: xr.Dataset, *, rtol: float = 1e-2) -> xr.Dataset:
     """
     if "wave_direction" not in ds.dims:
         raise ValueError("database has no 'wave_direction' dimension")
-    finite, _, _ = split_frequencies(ds)
-    a = finite["added_mass"].sel(influenced_dof=list(DOF_NAMES), radiating_dof=list(DOF_NAMES))
-    a = np.abs(a.values)
-    diag = np.sqrt(np.einsum("kii->i", a) / max(len(a), 1))
-    scale = np.outer(diag, diag)
+    _asymmetry(ds, rtol)
     m = frames.mirror_signs()
-    odd = np.outer(m, m) < 0
-    ratio = np.max(a[:, odd] / np.maximum(scale[odd], np.finfo(float).tiny))
-    if ratio > rtol:
-        raise ValueError(
-            f"hull does not look port/starboard symmetric: symmetric-antisymmetric added-mass "
-            f"couplings reach {ratio:.3g} of the diagonal scale (> rtol = {rtol})"
-        )
     beta = ds["wave_direction"].values
     new = np.mod(2.0 * np.pi - beta, 2.0 * np.pi)
     have = np.any(np.isclose(new[:, None], beta[None, :], rtol=0.0, atol=1e-9), axis=1)
