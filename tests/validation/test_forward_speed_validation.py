@@ -221,3 +221,59 @@ def test_a_ship_at_another_speed_than_the_build_speed():
     for dof in (HEAVE, PITCH):
         scale = np.ptp(alone[1000:, dof])
         assert np.abs(mixed[:, dof] - alone[:, dof]).max() < 1e-6 * scale, dof
+
+
+# ----------------------------------------------------------------- added resistance at speed
+def mean_surge_force(wave_length_over_l: float, froude: float, amplitude: float) -> float:
+    """Mean earth-x force [N] on the S175 held at U in regular head waves (0 m: calm water).
+
+    Linear radiation and diffraction have no mean; what remains is the mean of the nonlinear
+    Froude–Krylov + hydrostatic pressure on the moving hull (with gravity, whose body-x part
+    the pitch angle tilts), averaged over whole encounter periods after 150 s.
+    """
+    from ship_gym.kinematics import rotation_matrix
+
+    s = s175()
+    u = speed_of(froude)
+    omega = np.sqrt(2 * np.pi * G / (wave_length_over_l * LPP))
+    field = wave_field_for(RegularWave(max(2 * amplitude, 1e-12), period=2 * np.pi / omega), np.pi)
+    sim = Simulator(
+        s.hull, linear_forces(field), wave_field=field, dt=LINEAR_DT, free_dofs=HOLD_HORIZONTAL,
+        forward_speed=u,
+    )  # fmt: skip
+    sim.reset(eta=s.base)
+    period = 2 * np.pi / abs(float(encounter_frequency(omega, u, np.pi, G)))
+    n_mean = round(np.floor(150.0 / period) * period / LINEAR_DT)
+    n_total = round(300.0 / LINEAR_DT)
+    fx = []
+    for k in range(n_total):
+        sim.step()
+        if k >= n_total - n_mean:
+            parts = sim.force_breakdown()
+            total = sum(v for name, v in parts.items() if name != "coriolis")
+            fx.append((rotation_matrix(*sim.eta[3:6]) @ total[:3])[0])
+    return float(np.mean(fx))
+
+
+@pytest.mark.parametrize(("froude", "wave_length"), [(0.2, 1.0), (0.275, 1.15)])
+def test_froude_krylov_mean_force_at_speed_against_snnm_motion_part(froude, wave_length):
+    # Issue #13 item 3, rechecked with the forward-speed linearisation: the engine's own mean
+    # added resistance (FK on the moving hull, amplitude 1 m) against the motion part of the
+    # SNNM formula (Liu & Papanikolaou), at its peak. Measured σ_aw = R̄/(ρ g ζ² B²/L): Fn 0.2,
+    # λ/L 1.0: 5.2 vs 7.3; Fn 0.275, λ/L 1.15: 7.0 vs 9.9 — 70 % of SNNM's motion part (the
+    # second-order radiation and diffraction parts are missing from the linear models; before
+    # the forward-speed terms the FK mean exceeded SNNM near λ/L 1.15). Bounds 0.55–0.85: a
+    # regression guard on a stated model deficit, not a validation.
+    from ship_gym.forces.added_resistance import SNNMParticulars, snnm_components
+
+    s = s175()
+    rho, beam, amplitude = s.hull.rho, 25.4, 1.0
+    scale = rho * G * amplitude**2 * beam**2 / LPP
+    sigma = -(mean_surge_force(wave_length, froude, amplitude) - mean_surge_force(1.0, froude, 0.0))
+    sigma /= scale
+    omega = np.sqrt(2 * np.pi * G / (wave_length * LPP))
+    _, motion = snnm_components(
+        np.array([omega]), np.pi, speed_of(froude), SNNMParticulars.from_hull(s.hull)
+    )
+    ratio = sigma / (float(motion[0]) * amplitude**2 / scale)
+    assert 0.55 < ratio < 0.85, f"σ_FK = {sigma:.2f}, ratio to SNNM motion part {ratio:.2f}"
