@@ -511,6 +511,9 @@ class ShipTask(BatchedTask, abc.ABC):
         self.wave_direction = np.zeros(n)  # mean χ of the episode's sea [rad]
         self.capsize_angle = np.full(n, math.radians(capsize_angle_deg or lc.vanishing_angle_deg))
         self.initial_speed = np.full(n, float(setup.speed))
+        self.initial_roll = np.zeros(n)
+        """Roll angle [rad] and rate [rad/s] each ship started its episode with."""
+        self.initial_roll_rate = np.zeros(n)
         self.gm = np.full(n, lc.gm)
         self.episode_steps = np.zeros(n, dtype=np.int64)
         self.capsized = np.zeros(n, dtype=bool)
@@ -681,6 +684,8 @@ class ShipTask(BatchedTask, abc.ABC):
             self.commands["heading"][ids] = self.heading_setpoint[ids]
         self.sim.commands = {**self.sim.commands, **self.commands}
         self.sim.reset(ids, eta=eta, nu=nu, wave_fields=fields)
+        self.initial_roll[ids] = self.sim.eta[ids, 3]
+        self.initial_roll_rate[ids] = self.sim.nu[ids, 3]
         self.episode_steps[ids] = 0
         self.capsized[ids] = False
         self._hist_t[ids] = np.nan
@@ -745,6 +750,8 @@ class ShipTask(BatchedTask, abc.ABC):
         for key in keys:
             out[key] = np.array([self._reset_infos[int(i)][key] for i in ids], dtype=float)
         out["initial_speed_mps"] = self.initial_speed[ids].copy()
+        out["roll_deg"] = np.degrees(self.initial_roll[ids])
+        out["roll_rate_dps"] = np.degrees(self.initial_roll_rate[ids])
         out["gm_m"] = self.gm[ids].copy()
         out["capsize_angle_deg"] = np.degrees(self.capsize_angle[ids])
         return out

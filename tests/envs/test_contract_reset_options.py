@@ -112,6 +112,8 @@ def test_reset_options_replay_the_sea(name):
     assert info["wave_heading_deg"] == pytest.approx(30.0)
     assert info["gm_m"] == pytest.approx(1.2)
     assert info["initial_speed_mps"] == pytest.approx(options["initial_speed_mps"])
+    assert info["roll_deg"] == pytest.approx(5.0) and info["roll_rate_dps"] == pytest.approx(1.0)
+    assert drawn["roll_deg"] == 0.0 and drawn["roll_rate_dps"] == 0.0  # upright, at rest
     names = env.unwrapped.observation_names
     assert obs[names.index("roll [rad]")] == pytest.approx(math.radians(5.0), rel=1e-6)
     for _ in range(3):

@@ -103,7 +103,7 @@ def linear_run_at_speed(index: int, heading_deg: int, froude: float) -> tuple:
 def _cases():
     out = []
     for index in (16, 12):  # ω = 0.710 rad/s (λ/L = 0.70), 0.543 rad/s (λ/L = 1.19)
-        for froude in (0.2, 0.3):
+        for froude in (0.0, 0.2, 0.3):  # Fn 0 also in test_simulator_validation (not at 45°)
             for heading in (180, 135, 90, 45):
                 marks = [pytest.mark.slow] if index == 12 else []
                 ident = f"w{index}-fn{froude}-beta{heading}"
