@@ -463,6 +463,13 @@ def _wet_sums(
     return a0, a1, a2, a3, a4, a5
 
 
+@nb.njit(fastmath=_FM, cache=True, inline="always")
+def _split_mean_moment(c14, h, p1, c1, ab, c4, ac, g2, e, g3, b):  # pragma: no cover - compiled
+    """One component of 24 × the first moment of the pressure over a wet quadrilateral, mean of
+    its two triangle splits (the body of :func:`_integrate`)."""
+    return c14 * h + p1 * (c1 * ab + c4 * ac) + g2 * (ab + e + e + ac) + g3 * (ab + b + b + ac)
+
+
 @nb.njit(fastmath=_FM, cache=True)
 def _integrate(
     tri: np.ndarray,
@@ -566,24 +573,9 @@ def _integrate(
             hx = pb * bx + pe * ex + p1 * (bx + ex)
             hy = pb * by + pe * ey + p1 * (by + ey)
             hz = pb * bz + pe * ez + p1 * (bz + ez)
-            qx += (
-                c14 * hx
-                + p1 * (c1 * abx + c4 * acx)
-                + g2 * (abx + ex + ex + acx)
-                + g3 * (abx + bx + bx + acx)
-            ) * twentyfourth
-            qy += (
-                c14 * hy
-                + p1 * (c1 * aby + c4 * acy)
-                + g2 * (aby + ey + ey + acy)
-                + g3 * (aby + by + by + acy)
-            ) * twentyfourth
-            qz += (
-                c14 * hz
-                + p1 * (c1 * abz + c4 * acz)
-                + g2 * (abz + ez + ez + acz)
-                + g3 * (abz + bz + bz + acz)
-            ) * twentyfourth
+            qx += _split_mean_moment(c14, hx, p1, c1, abx, c4, acx, g2, ex, g3, bx) * twentyfourth
+            qy += _split_mean_moment(c14, hy, p1, c1, aby, c4, acy, g2, ey, g3, by) * twentyfourth
+            qz += _split_mean_moment(c14, hz, p1, c1, abz, c4, acz, g2, ez, g3, bz) * twentyfourth
         nx, ny, nz = areas[0, t], areas[1, t], areas[2, t]
         f0 -= p_scale * nx
         f1 -= p_scale * ny
