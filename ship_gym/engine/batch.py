@@ -84,7 +84,11 @@ from ship_gym.forces.base import (
     ForceContext,
     ForceModel,
 )
-from ship_gym.forces.diffraction import Diffraction, diffraction_force
+from ship_gym.forces.diffraction import (
+    Diffraction,
+    diffraction_force,
+    refresh_diffraction_cache,
+)
 from ship_gym.forces.froude_krylov import (
     FroudeKrylovHydrostatics,
     HullPanels,
@@ -459,6 +463,7 @@ class BatchDiffraction(BatchForceModel):
         """Heading change [rad] beyond which a ship's cache is refreshed."""
         self.encounter = template.frequency == "encounter"
         """Whether X_D is looked up at the encounter frequency."""
+        self._lookup: tuple[NDArray, NDArray, NDArray] | None = None
         self.bind(1, 1)
 
     def bind(self, n_ships: int, n_comp: int) -> None:
@@ -478,13 +483,31 @@ class BatchDiffraction(BatchForceModel):
         self._u_ref[ships] = np.nan
 
     def _refresh(self, ships: NDArray[np.int64], psi: NDArray, ctx: BatchContext, rows) -> None:
+        # the compiled backend's own refresh (one implementation of the look-up: a ship's cache
+        # is bit-identical whichever path filled it, so a reset and replay reproduces a run)
         w = ctx.waves
-        speed = ctx.forward_speed
-        self._xd[ships], self._dxd[ships], _, _ = self.template.heading_expansion(
-            w.direction[rows], w.omega[rows], w.wavenumber[rows], psi[:, None], speed
-        )
-        self._psi_ref[ships] = psi
-        self._u_ref[ships] = speed
+        speed = float(ctx.forward_speed)
+        n_c = w.direction.shape[1]
+        if self._lookup is None:
+            table, beta = self.template.interpolation_table()
+            self._lookup = (
+                np.ascontiguousarray(table, dtype=np.complex128),
+                np.ascontiguousarray(beta, dtype=float),
+                np.ascontiguousarray(self.template.omega, dtype=float),
+            )
+        work = np.zeros((3, n_c, 6), np.complex128)
+        count = np.zeros(1, np.int64)
+        ref = np.empty(2)
+        for ship, row, heading in zip(ships, rows, psi, strict=True):
+            args = (
+                *self._lookup, np.ascontiguousarray(w.direction[row], dtype=float),
+                np.ascontiguousarray(w.omega[row], dtype=float),
+                np.ascontiguousarray(w.wavenumber[row], dtype=float), self.encounter,
+                float(self.template.heading_step), False, work, count,
+            )  # fmt: skip
+            refresh_diffraction_cache(float(heading), speed, args, self._xd[ship],
+                                      self._dxd[ship], ref)  # fmt: skip
+            self._psi_ref[ship], self._u_ref[ship] = ref[0], ref[1]
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
         psi = np.ascontiguousarray(ctx.eta[:, 5])
