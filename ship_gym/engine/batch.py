@@ -487,6 +487,13 @@ class BatchDiffraction(BatchForceModel):
         # is bit-identical whichever path filled it, so a reset and replay reproduces a run)
         w = ctx.waves
         speed = float(ctx.forward_speed)
+        if self.template.above_range == "raise":  # numpy path only: the model raises itself
+            self._xd[ships], self._dxd[ships], _, _ = self.template.heading_expansion(
+                w.direction[rows], w.omega[rows], w.wavenumber[rows], psi[:, None], speed
+            )
+            self._psi_ref[ships] = psi
+            self._u_ref[ships] = speed
+            return
         n_c = w.direction.shape[1]
         if self._lookup is None:
             table, beta = self.template.interpolation_table()
