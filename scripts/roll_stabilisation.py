@@ -41,9 +41,10 @@ Part 3 — the simulator's own added resistance (regular head waves)
 Linear radiation and diffraction give no mean force, but the nonlinear Froude–Krylov force on the
 instantaneous wetted hull, with the heave and pitch motions, does: σ_AW of the simulator's wave
 models (surge held at 10 m/s, heave and pitch free, ζ_a = 1 m; the mean body-x force over whole
-encounter periods minus its calm-water value) against the SNNM curve. It peaks above SNNM near
-λ/L ≈ 1.15 and vanishes in short waves (no reflection without the diffraction pressure in the
-quadratic terms), so adding the SNNM total on top counts the motion part twice (see the report).
+encounter periods minus its calm-water value) against the SNNM curve. With the forward-speed
+linearisation it stays below SNNM at every λ/L (8.8 against 9.6 at its peak, λ/L ≈ 1.15) and
+vanishes in short waves (no reflection without the diffraction pressure in the quadratic
+terms), so adding the SNNM total on top counts most of the motion part twice (see the report).
 
 Wave groups: the ship's speed follows the local wave energy (surge time constant ≈ 100 s), so
 means over a few hundred seconds scatter by several per cent between windows; the default runs

@@ -91,9 +91,10 @@ Overlap with the nonlinear Froude–Krylov model: the linear radiation and diffr
 this project give no mean force, but the Froude–Krylov + hydrostatic force integrated over the
 instantaneous wetted hull of a heaving and pitching ship does (the first-order vertical force
 rotated by the pitch angle, the relative elevation at the waterline). For the S175 at 10 m/s in
-regular head waves (ζ_a = 1 m, surge held) the simulator's wave models alone give σ_AW ≈ 15.5
-at λ/L = 1.15 (SNNM: 9.6), 6.9 at λ/L = 1.0 (8.1), 1.7 at 0.8 (4.4) and ≈ 0 at 0.5 (1.9, all
-reflection) — ``scripts/roll_stabilisation.py --part rao``. With that force model on, the SNNM
+regular head waves (ζ_a = 1 m, surge held) the simulator's wave models alone give σ_AW ≈ 8.8
+at λ/L = 1.15 (SNNM: 9.6), 7.6 at λ/L = 1.0 (8.1), 2.0 at 0.8 (4.4), 6.0 at 1.3 (7.4) and ≈ 0 at
+0.5 (1.9, all reflection) — ``scripts/roll_stabilisation.py --part rao``, with the forward-speed
+linearisation of :mod:`ship_gym.hydro.forward_speed` (before it: 15.5 at λ/L = 1.15). With that force model on, the SNNM
 total counts the motion part twice; ``components="reflection"`` adds only the short-wave part
 the Froude–Krylov force lacks (an approximation too: its mean is not the true motion part).
 
