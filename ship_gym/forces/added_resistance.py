@@ -94,9 +94,11 @@ rotated by the pitch angle, the relative elevation at the waterline). For the S1
 regular head waves (ζ_a = 1 m, surge held) the simulator's wave models alone give σ_AW ≈ 8.8
 at λ/L = 1.15 (SNNM: 9.6), 7.6 at λ/L = 1.0 (8.1), 2.0 at 0.8 (4.4), 6.0 at 1.3 (7.4) and ≈ 0 at
 0.5 (1.9, all reflection) — ``scripts/roll_stabilisation.py --part rao``, with the forward-speed
-linearisation of :mod:`ship_gym.hydro.forward_speed` (before it: 15.5 at λ/L = 1.15). With that force model on, the SNNM
-total counts the motion part twice; ``components="reflection"`` adds only the short-wave part
-the Froude–Krylov force lacks (an approximation too: its mean is not the true motion part).
+linearisation of :mod:`ship_gym.hydro.forward_speed` (before it: 15.5 at λ/L = 1.15). With
+that force model on, the SNNM total counts most of the motion part twice;
+``components="reflection"`` adds only the short-wave part the Froude–Krylov force lacks (an
+approximation too: its mean is ≈ 70–90 % of SNNM's motion part near the peak, less in longer
+waves).
 
 Validity
 --------
