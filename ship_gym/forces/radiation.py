@@ -7,10 +7,13 @@ Radiation is linearised about steady straight-ahead motion at the forward speed 
 
     ν_p = ν − (U, 0, 0, 0, 0, 0)                [m/s, rad/s], body axes.
 
-The database is a **zero-speed** BEM database (``attrs["forward_speed"] = 0``). No forward-speed
-correction of the coefficients is made (no Salvesen–Tuck–Faltinsen U/ω terms, no speed-dependent
-kernels); forward speed enters only through ν_p and, for the constant-coefficient model, through
-the encounter frequency at which the coefficients are taken.
+The database is a **zero-speed** BEM database (``attrs["forward_speed"] = 0``). The memory model
+takes it to speed by the linearisation of :mod:`ship_gym.hydro.forward_speed`: body-axis ν_p
+(the relative normal velocity, ν_p = ẋ + U L x) and Kirchhoff's moment u Lᵀ(A(∞) E ν_p + λ) of
+the radiated momentum — Salvesen–Tuck–Faltinsen's forward-speed terms without end terms, with
+the zero-speed kernels (no speed-dependent kernels or fits). The constant-coefficient model
+(Matusiak's case 2) keeps its zero-speed coefficients at the encounter frequency, without that
+moment.
 
 Sign conventions (DESIGN.md §3, :mod:`ship_gym.hydro.retardation`)
 -----------------------------------------------------------------
@@ -155,7 +158,8 @@ def _hydro_arrays(database: xr.Dataset | HydroArrays) -> HydroArrays:
         if speed != 0.0:
             warnings.warn(
                 f"database attrs['forward_speed'] = {speed} m/s; the radiation models assume a "
-                "zero-speed database and apply no forward-speed correction",
+                "zero-speed database and add the forward-speed terms themselves (they would be "
+                "counted twice)",
                 RuntimeWarning,
                 stacklevel=3,
             )
