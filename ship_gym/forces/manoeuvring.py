@@ -23,11 +23,11 @@ rudder, propeller                               their own models
 ==============================================  ===========================================
 
 The added-mass derivatives of Clarke et al. (Y'_v̇ …) are therefore **not** used: the BEM
-supplies them through A(∞). The zero-speed BEM database carries no forward-speed terms
-(:mod:`ship_gym.forces.radiation` applies no Salvesen–Tuck–Faltinsen U/ω corrections) and the
-simulator adds no added-mass Coriolis matrix C_A(ν); the Munk moment (≈ −(Y_v̇ − X_u̇) u v) and
-the lift-like damping appear once, inside Clarke's captive-test derivatives, which are *total*
-hydrodynamic derivatives (potential + viscous) about amidships.
+supplies them through A(∞). With this model on, the radiation memory applies its forward-speed
+(Kirchhoff) moment in the vertical plane only (``speed_terms="vertical"``,
+:mod:`ship_gym.hydro.forward_speed`): its horizontal part, −U P_sway, is in steady drift the Munk
+moment, which together with the lift-like damping appears once, inside Clarke's captive-test
+derivatives — *total* hydrodynamic derivatives (potential + viscous) about amidships.
 
 Linear derivatives (Clarke, Gedling & Hine 1983, their regression eqs.)
 -----------------------------------------------------------------------
