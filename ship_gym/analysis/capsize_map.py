@@ -410,8 +410,11 @@ class RunOutcome:
     ----------
     capsized : bool
         Whether the run ended in capsize.
-    reason : {"none", "roll", "diverged"}
-        Why it ended early.
+    reason : {"none", "roll", "pitch", "diverged"}
+        Why it ended early: ``"pitch"`` is a "capsize" whose recorded pitch passed ±90° (a
+        pitch-pole: the Euler angles flip through θ = ±90°, so the roll criterion fired with
+        it). For a ship this means the run left the validity of the model (e.g. surf-riding
+        at high speed, :mod:`ship_gym.hydro.forward_speed`) — read it as "not a result".
     time_to_capsize : float or None
         Time of capsize [s] (None without capsize).
     max_abs_roll_deg, rms_roll_deg : float
@@ -452,6 +455,8 @@ def _outcome(
     if not late.any():
         late = np.ones_like(t, bool)
     dev = np.angle(np.exp(1j * (eta[:, 5] - heading_command)))
+    if reason == "roll" and np.any(np.abs(eta[:, 4]) >= 0.5 * math.pi):
+        reason = "pitch"  # a pitch-pole (RunOutcome): outside the model, not a roll capsize
     return RunOutcome(
         capsized=reason != "none",
         reason=reason,

@@ -345,3 +345,18 @@ def test_numpy_backend_steps_singly_and_agrees():
     for (a, _), (b, _) in zip(out["compiled"], out["numpy"], strict=True):
         assert a.reason == "roll"
         _assert_same_outcome(dataclasses.asdict(a), dataclasses.asdict(b))
+
+
+def test_a_capsize_through_a_pitch_pole_is_reported_as_such():
+    # the roll criterion fires when the zyx Euler angles flip through θ = ±90°: such a run (the
+    # surf-riding S175 at Fn 0.4 in docs/capsize_map) is a "pitch" outcome, not a roll capsize
+    t = np.arange(5.0)
+    eta = np.zeros((5, 6))
+    eta[:, 4] = np.radians([0.0, -20.0, -60.0, -95.0, -120.0])
+    eta[-1, 3] = np.radians(110.0)
+    series = {"t": t, "eta": eta, "nu": np.zeros((5, 6))}
+    out = cm._outcome(series, "roll", 4.0, 4.0, heading_command=0.0, stats_after=0.0)
+    assert out.capsized and out.reason == "pitch" and out.max_abs_pitch_deg == pytest.approx(120.0)
+    eta[:, 4] = np.radians([0.0, 5.0, -8.0, 6.0, -4.0])  # an ordinary roll capsize stays "roll"
+    out = cm._outcome(series, "roll", 4.0, 4.0, heading_command=0.0, stats_after=0.0)
+    assert out.reason == "roll"
