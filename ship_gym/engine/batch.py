@@ -332,6 +332,8 @@ class BatchStateSpaceRadiation(BatchForceModel):
         d: NDArray,
         a_inf: NDArray,
         speed_terms: SpeedTerms = "all",
+        *,
+        momentum: tuple[NDArray, NDArray] | None = None,
     ) -> None:
         a, b, c, d = (np.asarray(x, float) for x in (a, b, c, d))
         n = a.shape[0]
@@ -341,12 +343,14 @@ class BatchStateSpaceRadiation(BatchForceModel):
                 "expected (n, n), (n, 6), (6, n), (6, 6)"
             )
         self.speed_terms: SpeedTerms = check_speed_terms(speed_terms)
-        self.momentum_added_mass, self.momentum_memory = speed_momentum_rows(
-            a_inf, a, b, c, speed_terms
+        rows: tuple[NDArray, NDArray] = (
+            speed_momentum_rows(a_inf, a, b, c, speed_terms) if momentum is None else momentum
         )
+        self.momentum_added_mass, self.momentum_memory = rows
         """(2, 6) and (2, n): the pitch and yaw rows of Lᵀ A(∞) and Lᵀ C A⁻¹
         (:mod:`ship_gym.hydro.forward_speed` eq. 2)."""
-        self._surge_steady: NDArray | None = None
+        self._surge_steady = -np.linalg.solve(a, b[:, SURGE]) if n else np.zeros(0)
+        """z per m/s of a steady surge perturbation, −A⁻¹ B e₁ (:meth:`steady_surge_states`)."""
         self.matrices = (a, b, c)
         """The dense A (n, n), B (n, 6), C (6, n) of the fit."""
         self.feedthrough = d
@@ -365,11 +369,6 @@ class BatchStateSpaceRadiation(BatchForceModel):
         U starts without the transient of a surge step (its steady memory force is the fit's
         B(0) (u − U) ≈ 0)."""
         offset = np.asarray(surge_offset, dtype=float).reshape(-1)
-        if not np.any(offset):
-            return np.zeros((offset.size, self.n_states))
-        if self._surge_steady is None:
-            a, b, _ = self.matrices
-            self._surge_steady = -np.linalg.solve(a, b[:, SURGE])
         return offset[:, None] * self._surge_steady[None, :]
 
     @classmethod
@@ -381,7 +380,10 @@ class BatchStateSpaceRadiation(BatchForceModel):
                 "(PerShipForceModel) on the engine's numpy path"
             )
         ss = model.state_space
-        return cls(ss.A, ss.B, ss.C, ss.D, model.A_inf, model.speed_terms)
+        return cls(
+            ss.A, ss.B, ss.C, ss.D, model.A_inf, model.speed_terms,
+            momentum=(model.momentum_added_mass, model.momentum_memory),
+        )  # fmt: skip
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
         force = np.empty((ctx.n, 6))
@@ -463,7 +465,15 @@ class BatchDiffraction(BatchForceModel):
         """Heading change [rad] beyond which a ship's cache is refreshed."""
         self.encounter = template.frequency == "encounter"
         """Whether X_D is looked up at the encounter frequency."""
-        self._lookup: tuple[NDArray, NDArray, NDArray] | None = None
+        table, beta = template.interpolation_table()
+        self.lookup: tuple[NDArray, NDArray, NDArray] = (
+            np.ascontiguousarray(table, dtype=np.complex128),
+            np.ascontiguousarray(beta, dtype=float),
+            np.ascontiguousarray(template.omega, dtype=float),
+        )
+        """The bilinear look-up's table X_D (n_ω, n_β + 2, 6), its headings and frequencies:
+        the arguments of :func:`~ship_gym.forces.diffraction.refresh_diffraction_cache`, shared
+        by this model's numpy path and the compiled backend."""
         self.bind(1, 1)
 
     def bind(self, n_ships: int, n_comp: int) -> None:
@@ -487,33 +497,24 @@ class BatchDiffraction(BatchForceModel):
         # is bit-identical whichever path filled it, so a reset and replay reproduces a run)
         w = ctx.waves
         speed = float(ctx.forward_speed)
-        if self.template.above_range == "raise":  # numpy path only: the model raises itself
-            self._xd[ships], self._dxd[ships], _, _ = self.template.heading_expansion(
-                w.direction[rows], w.omega[rows], w.wavenumber[rows], psi[:, None], speed
-            )
-            self._psi_ref[ships] = psi
-            self._u_ref[ships] = speed
-            return
-        n_c = w.direction.shape[1]
-        if self._lookup is None:
-            table, beta = self.template.interpolation_table()
-            self._lookup = (
-                np.ascontiguousarray(table, dtype=np.complex128),
-                np.ascontiguousarray(beta, dtype=float),
-                np.ascontiguousarray(self.template.omega, dtype=float),
-            )
-        work = np.zeros((3, n_c, 6), np.complex128)
+        must_raise = self.template.above_range == "raise"
+        work = np.zeros((3, w.direction.shape[1], 6), np.complex128)
         count = np.zeros(1, np.int64)
         ref = np.empty(2)
         for ship, row, heading in zip(ships, rows, psi, strict=True):
             args = (
-                *self._lookup, np.ascontiguousarray(w.direction[row], dtype=float),
+                *self.lookup, np.ascontiguousarray(w.direction[row], dtype=float),
                 np.ascontiguousarray(w.omega[row], dtype=float),
                 np.ascontiguousarray(w.wavenumber[row], dtype=float), self.encounter,
-                float(self.template.heading_step), False, work, count,
+                float(self.template.heading_step), must_raise, work, count,
             )  # fmt: skip
-            refresh_diffraction_cache(float(heading), speed, args, self._xd[ship],
-                                      self._dxd[ship], ref)  # fmt: skip
+            if not refresh_diffraction_cache(float(heading), speed, args, self._xd[ship],
+                                             self._dxd[ship], ref):  # fmt: skip
+                # a component above ω_max with above_range="raise": the model's own error
+                self.template.heading_expansion(
+                    w.direction[row], w.omega[row], w.wavenumber[row], float(heading), speed
+                )
+                raise AssertionError("the diffraction model accepted what its kernel refused")
             self._psi_ref[ship], self._u_ref[ship] = ref[0], ref[1]
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:

@@ -638,8 +638,7 @@ class CompiledBackend:
         diff = next((f for f in sim.forces if isinstance(f, BatchDiffraction)), None)
         n_c = sim.n_components
         if diff is not None:
-            table, beta = diff.template.interpolation_table()
-            tab = (_c(table, np.complex128), _c(beta), _c(diff.template.omega))
+            tab = diff.lookup
             enc, h, tol = diff.encounter, diff.template.heading_step, diff.tolerance
             xd, dxd, psi_ref, u_ref = diff.caches
         else:

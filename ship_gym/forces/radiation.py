@@ -353,6 +353,10 @@ class RadiationMemory(ForceModel):
         (6, 6) relative L2 error of the fitted K per pair (time domain) [-].
     frequency_error : tuple of numpy.ndarray or None
         (6, 6) relative RMS errors of the fit's A(ω) − A(∞) and B(ω) against the database [-].
+    momentum_added_mass, momentum_memory : numpy.ndarray
+        (2, 6) and (2, n_states): the pitch and yaw rows of Kirchhoff's moment per unit surge
+        velocity, on ν_p and on the states (:func:`speed_momentum_rows`;
+        :mod:`ship_gym.hydro.forward_speed` eq. 2).
     """
 
     name = "radiation"
@@ -430,8 +434,8 @@ class RadiationMemory(ForceModel):
             self.n_states = 2
             select = np.zeros((N_DOF, 2))
             select[HEAVE, 0] = select[SWAY, 1] = 1.0
-            self._p_inf = momentum_rows(self.A_inf * SURGE_FREE, speed_terms)
-            self._p_mem = momentum_rows(select, speed_terms)
+            self.momentum_added_mass = momentum_rows(self.A_inf * SURGE_FREE, speed_terms)
+            self.momentum_memory = momentum_rows(select, speed_terms)
         else:
             self.kernels = kernels_on(_FIT_DT, t_max)
             opts = dict(DEFAULT_FIT_OPTIONS)
@@ -453,7 +457,7 @@ class RadiationMemory(ForceModel):
             self._C = np.ascontiguousarray(ss.C)
             self._D = np.ascontiguousarray(ss.D)
             self._has_d = bool(np.any(self._D != 0.0))
-            self._p_inf, self._p_mem = speed_momentum_rows(
+            self.momentum_added_mass, self.momentum_memory = speed_momentum_rows(
                 self.A_inf, ss.A, ss.B, ss.C, speed_terms
             )
         self.decay: KernelDecay = kernel_decay(self.kernels.t, self.kernels.K)
@@ -666,7 +670,9 @@ class RadiationMemory(ForceModel):
                 force -= self._D @ v
         u = float(ctx.nu[SURGE])  # the ship's own surge velocity (= U to first order)
         if u != 0.0:
-            force[list(MOMENT_ROWS)] += u * (self._p_inf @ v + self._p_mem @ z)
+            force[list(MOMENT_ROWS)] += u * (
+                self.momentum_added_mass @ v + self.momentum_memory @ z
+            )
         return force, states_dot
 
 
