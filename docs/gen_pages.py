@@ -37,6 +37,7 @@ SKIP = {"cli", "data"}
 #: later) follows alphabetically.
 ORDER = [
     "hull",
+    "ship",
     "hydro",
     "waves",
     "forces",

@@ -84,10 +84,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ship_gym.engine.ship import ShipSetup, build_simulator
+from ship_gym.engine.ship import ShipSetup, build_simulator, database_of
 from ship_gym.engine.simulator import SimulationDiverged, Simulator
 from ship_gym.forces.diffraction import Diffraction
-from ship_gym.hydro import load_database
 from ship_gym.io_utils import from_json_value, to_json_value
 from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
@@ -167,9 +166,7 @@ def build(
     # the engine converts the models when the Simulator is built: replacing an entry of
     # sim.forces afterwards has no effect, so rebuild the Simulator with the new model list
     models = [
-        Diffraction(
-            load_database(setup.database), f.wave_field, heading_tolerance_deg=heading_tolerance_deg
-        )
+        Diffraction(database_of(setup), f.wave_field, heading_tolerance_deg=heading_tolerance_deg)
         if isinstance(f, Diffraction)
         else f
         for f in sim.forces

@@ -26,7 +26,7 @@ wave sums (``ShipSetup.fk_method`` "fast" = float64, "fast32" = float32), the in
    second of one ship (BatchSimulator with N = 1, the environments' engine) in the irregular sea
    after the ramp, fastest of 3 interleaved repeats.
 
-The ship: ``ShipSetup`` of the environments (:func:`ship_gym.envs.s175.s175_setup`:
+The ship: ``ShipSetup`` of the environments (:func:`ship_gym.envs.env_task.task_setup`:
 state-space radiation memory, diffraction, Ikeda viscous roll damping, nonlinear Froude–Krylov +
 hydrostatics on the instantaneous wetted hull, KG 9.55 m) without propulsion, manoeuvring and
 rudder, surge/sway/yaw held (surge at U = Fn √(g Lpp)), heave/roll/pitch free
@@ -654,9 +654,9 @@ def run_study(quick: bool, log: Log = _silent) -> dict:
 
 
 def _env_default_mesh() -> list[int] | None:
-    """ship_gym.envs.s175.S175_MESH when the study ran (recorded, not used)."""
+    """ship_gym.envs.env_task.S175_MESH when the study ran (recorded, not used)."""
     try:
-        from ship_gym.envs.s175 import S175_MESH
+        from ship_gym.envs.env_task import S175_MESH
     except ImportError:
         return None
     return list(S175_MESH)

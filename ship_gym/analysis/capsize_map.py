@@ -266,7 +266,7 @@ class CapsizeMapConfig:
     hull_overrides : dict
         Loading condition: keyword overrides of the hull builder, e.g. ``{"kg": 10.1}`` [m].
     database : str
-        Hydrodynamic database name or path.
+        Hydrodynamic database: "auto" (the ship's own), a bundled name or a path.
     headings_deg : tuple of float
         Relative wave headings β [deg] (0 following, 180 head seas).
     froude_numbers : tuple of float
@@ -291,7 +291,7 @@ class CapsizeMapConfig:
 
     hull: str = "s175"
     hull_overrides: dict = field(default_factory=dict)
-    database: str = "s175"
+    database: str = "auto"
     headings_deg: tuple[float, ...] = (0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0)
     froude_numbers: tuple[float, ...] = (0.1, 0.2, 0.3)
     seas: tuple[SeaSpec, ...] = (SeaSpec(),)
@@ -391,9 +391,10 @@ def capsize_angle_of(hull: str, hull_overrides: dict | None = None) -> float:
     ValueError
         If GZ stays positive up to 90° (no capsize angle from the GZ curve: give one).
     """
-    from ship_gym.hull import load_hull, righting_arm
+    from ship_gym.hull import righting_arm
+    from ship_gym.ship import hull_of
 
-    curve = righting_arm(load_hull(hull, **(hull_overrides or {})), np.arange(0.0, 90.1, 5.0))
+    curve = righting_arm(hull_of(hull, **(hull_overrides or {})), np.arange(0.0, 90.1, 5.0))
     if not np.isfinite(curve.vanishing_angle_deg):
         raise ValueError(
             f"{hull} {hull_overrides or {}}: GZ stays positive up to 90 deg; give "
@@ -827,7 +828,7 @@ def autopilot_setup(
     radiation: RadiationName,
     integrator: IntegratorName,
     dt: float,
-    database: str = "s175",
+    database: str = "auto",
 ) -> ShipSetup:
     """The ship of the capsize studies: self-propelled, hull manoeuvring forces, rudder under the
     heading autopilot (this map and :mod:`ship_gym.analysis.matusiak`).
@@ -843,7 +844,7 @@ def autopilot_setup(
     dt : float
         Physics step [s].
     database : str
-        Hydrodynamic database name or path.
+        Hydrodynamic database: "auto" (the ship's own), a bundled name or a path.
     """
     from ship_gym.engine.ship import ShipSetup
 
@@ -863,7 +864,7 @@ def autopilot_setup(
 
 def cell_setup(config: CapsizeMapConfig, cell: Cell) -> tuple[ShipSetup, Any, float, Any]:
     """ShipSetup, sea, wave heading β [rad] and rng of a cell."""
-    from ship_gym.hull import load_hull
+    from ship_gym.ship import hull_of
 
     spec = config.seas[cell.sea]
     seed = config.seeds[cell.seed]
@@ -873,7 +874,7 @@ def cell_setup(config: CapsizeMapConfig, cell: Cell) -> tuple[ShipSetup, Any, fl
         if spec.kind == "regular"
         else (spec.to_sea())
     )
-    hull = load_hull(config.hull, **config.hull_overrides)
+    hull = hull_of(config.hull, **config.hull_overrides)
     speed = config.froude_numbers[cell.froude] * math.sqrt(hull.g * hull.particulars.lpp)
     setup = autopilot_setup(
         config.hull,

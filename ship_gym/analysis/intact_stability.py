@@ -299,13 +299,13 @@ def parametric_roll_check(
     damping_amplitude_deg : float
         Roll amplitude of the equivalent linear viscous damping [deg].
     """
-    from ship_gym.engine.ship import roll_natural_frequency
-    from ship_gym.hull import equilibrium, hydrostatics, load_hull
-    from ship_gym.hydro import load_database
+    from ship_gym.engine.ship import ShipSetup, database_of, roll_natural_frequency
+    from ship_gym.hull import equilibrium, hydrostatics
     from ship_gym.kinematics import encounter_frequency
+    from ship_gym.ship import hull_of
 
     overrides = dict(hull_overrides or {})
-    ship = load_hull(hull, **overrides)
+    ship = hull_of(hull, **overrides)
     length = ship.particulars.lpp
     g = ship.g
     if not (wavelength_ratio > 0.0 and 0.0 < steepness < 1.0 / 7.0):
@@ -316,7 +316,7 @@ def parametric_roll_check(
     lam = wavelength_ratio * length
     height = steepness * lam
     omega = math.sqrt(2.0 * math.pi * g / lam)
-    db = load_database("s175" if hull == "s175" else hull)
+    db = database_of(ShipSetup(hull=hull, hull_overrides=overrides))
     w_roll = roll_natural_frequency(ship, db)
     beta = math.radians(heading_deg)
     cosb = math.cos(beta)

@@ -70,7 +70,7 @@ from scipy.optimize import brentq
 from ship_gym.conventions import wrap_angle
 from ship_gym.engine.ship import ShipSetup, build_simulator, propeller_of, trim_shaft_speed
 from ship_gym.forces.propeller import Propeller, service_speed
-from ship_gym.hull import load_hull
+from ship_gym.ship import hull_of
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -139,7 +139,7 @@ def trial_setup(
         Further :class:`ShipSetup` fields (e.g. ``rudder="autopilot"``, ``free_dofs``).
     """
     if speed is None:
-        speed = service_speed(load_hull(hull))
+        speed = service_speed(hull_of(hull))
     kw = {
         "hull": hull,
         "speed": float(speed),
@@ -685,7 +685,7 @@ def turning_circle(
     return TurningCircleResult(
         rudder_order_deg=float(rudder_deg),
         approach_speed=u0,
-        length=load_hull(setup.hull, **setup.hull_overrides).particulars.lpp,
+        length=hull_of(setup.hull, **setup.hull_overrides).particulars.lpp,
         shaft_speed=float(sim.commands["shaft_speed"]),
         t=a["t"],
         x=a["x"],
@@ -782,7 +782,7 @@ def zigzag(
         rudder_order_deg=float(rudder_deg),
         switch_deg=switch,
         approach_speed=u0,
-        length=load_hull(setup.hull, **setup.hull_overrides).particulars.lpp,
+        length=hull_of(setup.hull, **setup.hull_overrides).particulars.lpp,
         t=a["t"],
         heading_change_deg=h_deg,
         rudder_deg=side * np.degrees(a["rudder"]),

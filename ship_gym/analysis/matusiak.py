@@ -190,9 +190,9 @@ class Scenario:
 
     def length(self) -> float:
         """Ship length L [m] (Lpp of the library hull)."""
-        from ship_gym.hull import load_hull
+        from ship_gym.ship import hull_of
 
-        return load_hull(self.hull).particulars.lpp
+        return hull_of(self.hull).particulars.lpp
 
     def sea(self, length: float | None = None) -> RegularWave:
         """Matusiak's regular wave scaled to this hull (eq. 12 ramp, T_f = ``ramp_time``)."""
@@ -393,13 +393,13 @@ def run_scenario(
         simulate_until_capsize,
         use_engine,
     )
-    from ship_gym.engine.ship import roll_natural_frequency
-    from ship_gym.hull import equilibrium, hydrostatics, load_hull
-    from ship_gym.hydro import load_database
+    from ship_gym.engine.ship import database_of, roll_natural_frequency
+    from ship_gym.hull import equilibrium, hydrostatics
     from ship_gym.kinematics import encounter_frequency
+    from ship_gym.ship import hull_of
 
     t0 = time.process_time()
-    hull = load_hull(scenario.hull, **scenario.hull_overrides)
+    hull = hull_of(scenario.hull, **scenario.hull_overrides)
     eq = equilibrium(hull)
     gm = hydrostatics(hull, heave=eq.heave, trim=eq.trim).gmt
     angle = capsize_angle_of(scenario.hull, scenario.hull_overrides)
@@ -413,7 +413,7 @@ def run_scenario(
             )
         )
     )
-    w_roll = roll_natural_frequency(hull, load_database(scenario.setup().database))
+    w_roll = roll_natural_frequency(hull, database_of(scenario.setup()))
     outcome, series = simulate_until_capsize(
         sim,
         scenario.duration,

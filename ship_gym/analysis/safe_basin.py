@@ -407,7 +407,8 @@ def s175_safe_basin(
     """
     from ship_gym.engine.batch import build_batch_simulator
     from ship_gym.engine.ship import ShipSetup, wave_field_for
-    from ship_gym.hull import load_hull, righting_arm
+    from ship_gym.hull import righting_arm
+    from ship_gym.ship import hull_of
     from ship_gym.waves.sea_state import RegularWave
 
     duration = _positive(duration, "duration", "s")
@@ -419,7 +420,7 @@ def s175_safe_basin(
     if not (math.isfinite(height) and height >= 0.0):
         raise ValueError(f"wave_height must be >= 0 [m], got {wave_height!r}")
     if capsize_angle is None:
-        gz = righting_arm(load_hull(hull), np.arange(0.0, 91.0, 5.0))
+        gz = righting_arm(hull_of(hull), np.arange(0.0, 91.0, 5.0))
         if not math.isfinite(gz.vanishing_angle_deg):
             raise ValueError(f"hull {hull!r} has no vanishing angle below 90°: give capsize_angle")
         capsize_angle = math.radians(gz.vanishing_angle_deg)

@@ -40,6 +40,7 @@ def build_parser() -> argparse.ArgumentParser:
         identify,
         manoeuvre,
         safe_basin,
+        ship,
         simulate,
     )
 
@@ -48,7 +49,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--debug", action="store_true", help="show the full traceback of an error")
     sub = parser.add_subparsers(dest="command", required=True)
-    for module in (hull, hydro, simulate, manoeuvre, capsize, safe_basin, identify, agents):
+    for module in (ship, hull, hydro, simulate, manoeuvre, capsize, safe_basin, identify, agents):
         module.add_commands(sub)
     for command in sub.choices.values():  # also ``ship-gym CMD … --debug``
         command.add_argument(

@@ -18,6 +18,7 @@ import argparse
 from ship_gym.cli.common import (
     CLIError,
     add_overrides_argument,
+    add_ship_argument,
     bounded_float,
     check_irregular_sea,
     count,
@@ -47,7 +48,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         "capsize-map",
         help="capsize map: heading x Froude number (x sea state x seeds) under the autopilot",
     )
-    p.add_argument("--hull", default="s175")
+    add_ship_argument(p)
     add_overrides_argument(
         p, "loading condition / hull overrides, e.g. kg=10.1 (raises G: lower GM)"
     )
@@ -102,7 +103,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         "parametric-roll",
         help="parametric-roll susceptibility (Mathieu check; --simulate for the 6-DOF answer)",
     )
-    q.add_argument("--hull", default="s175")
+    add_ship_argument(q)
     add_overrides_argument(q, "hull overrides")
     q.add_argument("--wavelength-ratio", type=positive_float, default=1.0, help="λ/L [-]")
     q.add_argument(
@@ -134,7 +135,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     d = sub.add_parser(
         "dead-ship", help="dead ship (no propulsion) in beam irregular seas: roll statistics"
     )
-    d.add_argument("--hull", default="s175")
+    add_ship_argument(d)
     add_overrides_argument(d, "hull overrides")
     d.add_argument("--hs", type=positive_float, default=7.0, help="significant wave height [m]")
     d.add_argument("--tp", type=positive_float, default=15.0, help="peak period [s]")

@@ -142,6 +142,33 @@ def existing_file(text: str) -> str:
     return text
 
 
+def ship_name(text: str) -> str:
+    """A ship: a bundled ship / library hull name or a ship file (``.toml``), read and checked
+    at parse time so that a bad file is reported before any work."""
+    from ship_gym.ship import load_ship
+
+    try:
+        load_ship(text)
+    except (ValueError, OSError) as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return text
+
+
+def add_ship_argument(parser: argparse.ArgumentParser, *, positional: bool = False) -> None:
+    """Add the ship argument: ``--ship SHIP`` (alias ``--hull``, default the S175) or, with
+    ``positional``, a required ``ship`` argument; either way stored as ``args.hull``."""
+    help = (
+        "ship: a bundled ship or library hull (s175, box_barge, hemisphere, wigley, …) or a "
+        "ship file (.toml; see `ship-gym ship check`)"
+    )
+    if positional:
+        parser.add_argument("hull", metavar="SHIP", type=ship_name, help=help)
+    else:
+        parser.add_argument(
+            "--ship", "--hull", dest="hull", default="s175", type=ship_name, help=help
+        )
+
+
 def override_item(text: str) -> str:
     """One ``key=value`` item of ``--set`` (checked at parse time)."""
     key = text.split("=", 1)[0]

@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
+from typing import Any
 
 from ship_gym.cli.common import (
     CLIError,
     add_overrides_argument,
+    add_ship_argument,
     bounded_float,
     parse_overrides,
     positive_float,
@@ -18,8 +21,8 @@ from ship_gym.cli.common import (
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
     """Register ``hull`` on the ``ship-gym`` parser."""
-    p = sub.add_parser("hull", help="particulars, hydrostatics and GZ curve of a library hull")
-    p.add_argument("hull", help="s175, box_barge, hemisphere or wigley")
+    p = sub.add_parser("hull", help="particulars, hydrostatics and GZ curve of a ship's hull")
+    add_ship_argument(p, positional=True)
     add_overrides_argument(p, "builder overrides, e.g. kg=10.0 n_sections=80")
     p.add_argument(
         "--heel-max", type=bounded_float(0.0, 180.0, low_open=True), default=90.0,
@@ -57,25 +60,50 @@ def _check_loading(hull: object, hs: object, overrides: dict) -> None:
 
 
 def _cmd_hull(args: argparse.Namespace) -> int:
-    import numpy as np
+    from ship_gym.ship import hull_of
 
-    from ship_gym.hull import equilibrium, hydrostatics, load_hull, righting_arm
+    check_heel_arguments(args)
+    prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
+    prepare_output(args.json, "--json")
+    overrides = parse_overrides(args.set)
+    hull = hull_of(args.hull, **overrides)
+    payload = report_hull(
+        hull, heel_max=args.heel_max, heel_step=args.heel_step, plot=args.plot, overrides=overrides
+    )
+    write_json(args.json, payload)
+    return 0
 
+
+def check_heel_arguments(args: argparse.Namespace) -> None:
+    """Refuse a heel step larger than the largest heel (``--heel-step``, ``--heel-max``)."""
     if args.heel_step > args.heel_max:
         raise CLIError(
             f"--heel-step {args.heel_step:g} is larger than --heel-max {args.heel_max:g}; "
             "expected a step <= the largest heel"
         )
-    plot = prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
-    prepare_output(args.json, "--json")
-    overrides = parse_overrides(args.set)
-    hull = load_hull(args.hull, **overrides)
+
+
+def report_hull(
+    hull: Any,
+    *,
+    heel_max: float = 90.0,
+    heel_step: float = 5.0,
+    plot: str | None = None,
+    overrides: dict | None = None,
+) -> dict[str, Any]:
+    """Print a hull's particulars, hydrostatics, equilibrium and GZ curve, plot the GZ curve
+    (``plot``: a prepared path or None/'' to skip); returns the numbers (the ``--json`` payload).
+    """
+    import numpy as np
+
+    from ship_gym.hull import equilibrium, hydrostatics, righting_arm
+
     p = hull.particulars
     hs = hydrostatics(hull)
-    _check_loading(hull, hs, overrides)
+    _check_loading(hull, hs, overrides or {})
     eq = equilibrium(hull)
     hs_eq = hydrostatics(hull, heave=eq.heave, trim=eq.trim)
-    heels = np.arange(0.0, args.heel_max + 1e-9, args.heel_step)
+    heels = np.arange(0.0, heel_max + 1e-9, heel_step)
     curve = righting_arm(hull, heels)
     print(
         f"hull {hull.name}: {hull.mesh.n_faces} panels to the deck, "
@@ -105,7 +133,7 @@ def _cmd_hull(args: argparse.Namespace) -> int:
         f"  max GZ {curve.max_gz:.4f} m at {curve.angle_max_gz_deg:.1f} deg; angle of vanishing "
         f"stability {curve.vanishing_angle_deg:.2f} deg"
     )
-    if args.plot:
+    if plot:
         import matplotlib
 
         matplotlib.use("Agg")
@@ -129,20 +157,21 @@ def _cmd_hull(args: argparse.Namespace) -> int:
         ax.legend()
         ax.grid(alpha=0.3)
         fig.tight_layout()
-        assert plot is not None
-        write_or_rescue(plot, lambda f: fig.savefig(f, dpi=120, format=plot.suffix[1:]), "--plot")
-        print(f"wrote {args.plot}")
-    write_json(
-        args.json,
-        {
-            "hull": hull.name,
-            "displacement_t": hs.displacement / 1e3,
-            "kb_m": hs.kb,
-            "gmt_m": hs.gmt,
-            "gml_m": hs.gml,
-            "heel_deg": curve.heel_deg.tolist(),
-            "gz_m": curve.gz.tolist(),
-            "vanishing_angle_deg": curve.vanishing_angle_deg,
-        },
-    )
-    return 0
+        target = Path(plot)
+        write_or_rescue(
+            target, lambda f: fig.savefig(f, dpi=120, format=target.suffix[1:]), "--plot"
+        )
+        plt.close(fig)
+        print(f"wrote {plot}")
+    return {
+        "hull": hull.name,
+        "displacement_t": hs.displacement / 1e3,
+        "kb_m": hs.kb,
+        "gmt_m": hs.gmt,
+        "gml_m": hs.gml,
+        "heel_deg": curve.heel_deg.tolist(),
+        "gz_m": curve.gz.tolist(),
+        "vanishing_angle_deg": curve.vanishing_angle_deg,
+        "sinkage_m": float(eq.heave),
+        "trim_deg": float(np.degrees(eq.trim)),
+    }

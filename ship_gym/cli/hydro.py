@@ -6,6 +6,7 @@ import argparse
 import os
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -13,12 +14,14 @@ import numpy as np
 from ship_gym.cli.common import (
     CLIError,
     add_overrides_argument,
+    add_ship_argument,
     bounded_float,
     min_count,
     n_jobs,
     parse_overrides,
     positive_float,
     prepare_output,
+    prepare_output_dir,
     unique,
     write_json,
     write_or_rescue,
@@ -28,7 +31,7 @@ from ship_gym.cli.common import (
 def add_commands(sub: argparse._SubParsersAction) -> None:
     """Register the hydrodynamic subcommands on the ``ship-gym`` parser."""
     p = sub.add_parser("hydro", help="compute a hydrodynamic database with capytaine (BEM)")
-    p.add_argument("hull", help="library hull: s175, box_barge, hemisphere or wigley")
+    add_ship_argument(p, positional=True)
     p.add_argument("--output", required=True, help="NetCDF file to write (atomically)")
     add_overrides_argument(p, "hull builder overrides (mesh resolution, loading)")
     p.add_argument(
@@ -48,6 +51,11 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         help="wave headings [deg], ours: 0 following, 180 head seas",
     )
     p.add_argument("--n-jobs", type=n_jobs, default=1, help="parallel BEM jobs (joblib)")
+    p.add_argument(
+        "--checkpoint",
+        default=None,
+        help="folder keeping each solved frequency; a rerun with the same folder reuses them",
+    )
     p.set_defaults(func=_cmd_hydro)
 
     k = sub.add_parser("kernels", help="retardation functions of a database, with diagnostics")
@@ -61,19 +69,25 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     k.set_defaults(func=_cmd_kernels)
 
 
+def rejected_path(output: Path) -> Path:
+    """Where a database that failed validation is kept: ``<output stem>.rejected.nc``."""
+    return output.with_name(f"{output.stem}.rejected.nc")
+
+
 def _cmd_hydro(args: argparse.Namespace) -> int:
-    from ship_gym.hull import load_hull
     from ship_gym.hydro.bem import compute_hull_database
-    from ship_gym.hydro.checks import validate_database
+    from ship_gym.hydro.checks import DatabaseError, validate_database
     from ship_gym.hydro.database import save_database
+    from ship_gym.ship import hull_of
 
     output = prepare_output(args.output, "--output", suffixes=(".nc",))
     assert output is not None
+    checkpoint = prepare_output_dir(args.checkpoint, "--checkpoint")
     if not args.headings and args.headings is not None:
         raise CLIError("--headings: expected at least one heading [deg]")
     if args.headings is not None:
         unique([h % 360.0 for h in args.headings], "--headings", "headings (mod 360)")
-    hull = load_hull(args.hull, **parse_overrides(args.set))
+    hull = hull_of(args.hull, **parse_overrides(args.set))
     headings = None if args.headings is None else np.radians(args.headings)
     start = time.perf_counter()
     ds = compute_hull_database(
@@ -82,17 +96,20 @@ def _cmd_hydro(args: argparse.Namespace) -> int:
         omega_max=args.omega_max,
         wave_directions=headings,
         n_jobs=args.n_jobs,
+        checkpoint=checkpoint,
     )
     elapsed = time.perf_counter() - start
-    report = validate_database(ds)
     try:
-        save_database(ds, output)
-    except OSError as exc:
-        rescue = Path(tempfile.gettempdir()) / f"ship-gym-{os.getpid()}-{output.name}"
-        save_database(ds, rescue)
+        report = validate_database(ds)
+    except DatabaseError as exc:
+        # the BEM results are kept: a rejected database can be inspected (or validated with
+        # other tolerances) instead of being computed again
+        rejected = _save_or_rescue(ds, rejected_path(output), args.output, save_database)
         raise CLIError(
-            f"--output: could not write {args.output!r} ({exc}); the database was saved to {rescue}"
+            f"{hull.name}: the computed database failed validation; it was saved to {rejected} "
+            f"(not to {args.output!r}).\n{exc}"
         ) from None
+    _save_or_rescue(ds, output, args.output, save_database)
     print(
         f"{hull.name}: {ds.attrs.get('n_panels')} panels, {ds.sizes['omega']} frequencies, "
         f"{ds.sizes['wave_direction']} headings in {elapsed:.1f} s → {args.output}"
@@ -100,6 +117,20 @@ def _cmd_hydro(args: argparse.Namespace) -> int:
     for key, value in report.items():
         print(f"  {key}: {value}")
     return 0
+
+
+def _save_or_rescue(ds: object, path: Path, shown: str, save: Callable[..., object]) -> Path:
+    """Save ``ds`` at ``path``; if that fails, in the system temp directory (CLIError saying so)."""
+    try:
+        save(ds, path)
+    except OSError as exc:
+        rescue = Path(tempfile.gettempdir()) / f"ship-gym-{os.getpid()}-{path.name}"
+        save(ds, rescue)
+        raise CLIError(
+            f"--output: could not write {str(path)!r} ({exc}) for --output {shown!r}; the "
+            f"database was saved to {rescue}"
+        ) from None
+    return path
 
 
 def _cmd_kernels(args: argparse.Namespace) -> int:

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from ship_gym.cli.common import (
     CLIError,
+    add_ship_argument,
     bounded_float,
     nonnegative_float,
     positive_float,
@@ -30,7 +31,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         help="IMO manoeuvring trials: 35° turning circle, 10/10 and 20/20 zig-zags (calm water)",
     )
     p.add_argument("--test", default="all", choices=TESTS, help="which trial(s) to run")
-    p.add_argument("--hull", default="s175")
+    add_ship_argument(p)
     p.add_argument(
         "--speed", type=positive_float, default=None, help="test speed [m/s] (default: Fn = 0.25)"
     )
@@ -51,14 +52,14 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
 
 def _cmd_manoeuvre(args: argparse.Namespace) -> int:
     from ship_gym.analysis import manoeuvres as man
-    from ship_gym.hull import load_hull
+    from ship_gym.ship import hull_of
 
     if args.dt > 1.0:
         raise CLIError(f"--dt {args.dt:g} s is too coarse for the 6-DOF model; expected <= 1 s")
     prepare_output(args.json, "--json")
     prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
     setup = man.trial_setup(args.hull, args.speed, dt=args.dt)
-    length = load_hull(args.hull).particulars.lpp
+    length = hull_of(args.hull).particulars.lpp
     side = -1.0 if args.port else 1.0
     progress = not args.no_progress
     want = set(TESTS[:3]) if args.test == "all" else {args.test}

@@ -20,6 +20,7 @@ from typing import Any
 
 from ship_gym.cli.common import (
     CLIError,
+    add_ship_argument,
     bounded_float,
     finite_float,
     min_count,
@@ -29,7 +30,9 @@ from ship_gym.cli.common import (
     write_json,
 )
 
-MODELS = ("edith-terkol", "s175")
+MODELS = ("edith-terkol", "six-dof", "s175")
+"""``six-dof``: the roll-only slice of the 6-DOF model of ``--ship``; ``s175`` is the same with
+the S175 (the default ship)."""
 
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
@@ -39,6 +42,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         help="safe basin of roll motion (McCue & Campbell): Edith Terkol 1-DOF or S175 roll-only",
     )
     p.add_argument("--model", default="edith-terkol", choices=MODELS)
+    add_ship_argument(p)
     p.add_argument(
         "--forcing", type=nonnegative_float, default=0.0195,
         help="edith-terkol forcing amplitude F [rad/s^2] (McCue & Campbell: 0.0195)",
@@ -129,6 +133,7 @@ def _cmd_safe_basin(args: argparse.Namespace) -> int:
             "dt": 0.1 if args.dt is None else args.dt,
             "wave_period": args.wave_period,
             "wave_heading_deg": args.wave_heading_deg,
+            "hull": "s175" if args.model == "s175" else args.hull,
         }
         basin = sb.s175_safe_basin(wave_height=args.wave_height, progress=progress, **kwargs)
         reference = (

@@ -11,6 +11,7 @@ import numpy as np
 
 from ship_gym.cli.common import (
     CLIError,
+    add_ship_argument,
     count,
     finite_float,
     irregular_sea,
@@ -28,8 +29,12 @@ if TYPE_CHECKING:
 def add_commands(sub: argparse._SubParsersAction) -> None:
     """Register ``simulate`` on the ``ship-gym`` parser."""
     p = sub.add_parser("simulate", help="time-domain 6-DOF simulation in regular/irregular waves")
-    p.add_argument("--hull", default="s175")
-    p.add_argument("--database", default="s175", help="'s175' or a NetCDF database")
+    add_ship_argument(p)
+    p.add_argument(
+        "--database",
+        default="auto",
+        help="'auto' (the ship's own), a bundled name or a NetCDF database",
+    )
     p.add_argument("--speed", type=nonnegative_float, default=0.0, help="forward speed [m/s]")
     p.add_argument(
         "--heading-deg",

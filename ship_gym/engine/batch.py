@@ -76,7 +76,7 @@ from ship_gym.conventions import ROLL, SURGE
 from ship_gym.engine.batch_control import batch_control_model, trim_batch_shaft_speed
 from ship_gym.engine.results import SimulationDiverged, SimulationResult, steps_in
 from ship_gym.engine.rigid_body import healthy_state, left_hand_side, rigid_body_terms
-from ship_gym.engine.ship import Sea, ShipSetup, build_force_models
+from ship_gym.engine.ship import Sea, ShipSetup, build_force_models, database_of, ship_of
 from ship_gym.forces.base import (
     BatchContext,
     BatchForceModel,
@@ -103,9 +103,8 @@ from ship_gym.forces.radiation import (
     state_space_radiation,
 )
 from ship_gym.forces.viscous import ViscousRollDamping
-from ship_gym.hull import equilibrium, load_hull
+from ship_gym.hull import equilibrium
 from ship_gym.hull.hull import Hull
-from ship_gym.hydro import load_database
 from ship_gym.hydro.forward_speed import SpeedTerms, check_speed_terms
 from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.typing import IntegratorName
@@ -1687,8 +1686,9 @@ def build_batch_simulator(
     if control not in ("batch", "per_ship"):
         raise ValueError(f"control must be 'batch' or 'per_ship', got {control!r}")
     fields = list(wave_fields)
-    hull = load_hull(setup.hull, **setup.hull_overrides)
-    database = load_database(setup.database)
+    ship = ship_of(setup)
+    hull = ship.hull
+    database = database_of(setup, ship)
     template = next((f for f in fields if f is not None), None)
     # a calm template still yields a Diffraction model (its table is all the batch needs)
     template_field = WaveField.calm() if template is None else template

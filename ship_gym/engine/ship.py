@@ -44,20 +44,19 @@ from ship_gym.engine.linearisation import nomoto_from_models
 from ship_gym.forces.added_resistance import AddedResistance
 from ship_gym.forces.base import ForceModel
 from ship_gym.forces.diffraction import Diffraction
-from ship_gym.forces.fins import RollFins, TFoil
 from ship_gym.forces.froude_krylov import FroudeKrylovHydrostatics
 from ship_gym.forces.manoeuvring import HullManoeuvring
-from ship_gym.forces.propeller import Propeller, design_propeller_for
+from ship_gym.forces.propeller import Propeller
 from ship_gym.forces.radiation import ConstantCoefficientRadiation, RadiationMemory
 from ship_gym.forces.resistance import CalmWaterResistance
-from ship_gym.forces.rudder import Rudder
 from ship_gym.forces.viscous import BilgeKeel, ViscousRollDamping
-from ship_gym.hull import equilibrium, hydrostatics, load_hull
+from ship_gym.hull import equilibrium, hydrostatics
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
 from ship_gym.hydro.forward_speed import SpeedTerms
 from ship_gym.hydro.rao import natural_frequency
 from ship_gym.kinematics import encounter_frequency
+from ship_gym.ship import Ship, check_database_matches, load_ship
 from ship_gym.typing import IntegratorName
 from ship_gym.waves.sea_state import IrregularSea, RegularWave
 from ship_gym.waves.wave_field import WaveField
@@ -78,11 +77,17 @@ class ShipSetup:
     Attributes
     ----------
     hull : str
-        Library hull name (:func:`ship_gym.hull.load_hull`).
+        The ship: a ship file (``.toml``, :mod:`ship_gym.ship.description`), the name of a
+        bundled ship or a library hull (``"s175"``, ``"box_barge"``…;
+        :func:`ship_gym.ship.load_ship`).
     hull_overrides : dict
-        Keyword overrides of the hull builder (resolution, KG, …).
+        Loading overrides (``kg``, ``gm``, ``displacement_t``, ``lcg``,
+        ``radii_of_gyration``) and hull-builder keywords (mesh resolution).
     database : str
-        ``"s175"`` or a NetCDF path (:func:`ship_gym.hydro.load_database`).
+        ``"auto"``: the ship's own database (named by its file, bundled, or built from the hull
+        and cached); else a bundled name or a NetCDF path
+        (:func:`ship_gym.hydro.load_database`). Either way a database whose waterplane
+        stiffness is not the hull's is refused (:func:`ship_gym.ship.check_database_matches`).
     speed : float
         Steady forward speed U [m/s].
     radiation : {"state_space", "convolution", "2a", "2b", "none"}
@@ -121,7 +126,7 @@ class ShipSetup:
 
     hull: str = "s175"
     hull_overrides: dict = field(default_factory=dict)
-    database: str = "s175"
+    database: str = "auto"
     speed: float = 0.0
     radiation: RadiationName = "state_space"
     diffraction: bool = True
@@ -163,6 +168,25 @@ class ShipSetup:
 
 
 Sea = RegularWave | IrregularSea | None
+
+
+def ship_of(setup: ShipSetup) -> Ship:
+    """The setup's ship (:func:`ship_gym.ship.load_ship`, cached per process)."""
+    return load_ship(setup.hull, **setup.hull_overrides)
+
+
+def database_of(setup: ShipSetup, ship: Ship | None = None) -> xr.Dataset:
+    """The setup's hydrodynamic database, checked against the ship's hull.
+
+    ``"auto"``: the ship's own (:meth:`ship_gym.ship.Ship.database`, built and cached on first
+    use); a bundled name or a path otherwise.
+    """
+    ship = ship_of(setup) if ship is None else ship
+    if setup.database == "auto":
+        return ship.database()
+    database = load_database(setup.database)
+    check_database_matches(ship.hull, database, str(setup.database))
+    return database
 
 
 def resolve_wave_heading(sea: Sea, wave_heading: float | None, default: float = 0.0) -> float:
@@ -328,8 +352,9 @@ def _control_models(
     propeller before the rudder, which reads its thrust from ``ctx.shared``)."""
     out: list[ForceModel] = []
     commands: dict = {}
+    ship = ship_of(setup)
     if setup.propulsion:
-        propeller = design_propeller_for(hull)
+        propeller = ship.propeller()
         out += [propeller.resistance or CalmWaterResistance.from_hull(hull), propeller]
         commands["shaft_speed"] = propeller.shaft_speed_for(setup.speed)
     if setup.manoeuvring:
@@ -338,7 +363,7 @@ def _control_models(
     mass = hull.mass.rigid_body_matrix() + a_lhs
     c = database["hydrostatic_stiffness"].values
     if setup.rudder != "none":
-        rudder = Rudder()
+        rudder = ship.rudder()
         controller: Controller | None = None
         if setup.rudder == "autopilot":
             nomoto = nomoto_from_models(
@@ -347,14 +372,14 @@ def _control_models(
             controller = HeadingAutopilot.from_nomoto(nomoto)
         out.append(Actuated(rudder, RUDDER_SERVO, "rudder", controller=controller))
     if setup.fins != "none":
-        fins = RollFins()
+        fins = ship.fins()
         controller = None
         if setup.fins == "controller":
             k_delta = control_derivative(fins, "fins", 3, max(setup.speed, 1.0))
             controller = FinController.tuned(k_delta, c[3, 3], mass[3, 3])
         out.append(Actuated(fins, FIN_SERVO, "fins", controller=controller))
     if setup.t_foil != "none":
-        foil = TFoil()
+        foil = ship.t_foil()
         controller = None
         if setup.t_foil == "controller":
             u = max(setup.speed, 1.0)
@@ -393,8 +418,9 @@ def build_simulator(
         For irregular seas (one seed, one sea).
     """
     wave_heading = resolve_wave_heading(sea, wave_heading, default=np.pi)
-    hull = load_hull(setup.hull, **setup.hull_overrides)
-    database = load_database(setup.database)
+    ship = ship_of(setup)
+    hull = ship.hull
+    database = database_of(setup, ship)
     wave_field = wave_field_for(sea, wave_heading, rng)
     models, commands = build_force_models(setup, hull, database, wave_field, sea, wave_heading)
     from ship_gym.engine.simulator import Simulator

@@ -5,7 +5,7 @@ prediction": regular waves λ = 1.5 L, amplitude 4.5 m for L = 150 m, Fn 0.2–0
 off following seas; the A-1 container ship capsized at Fn 0.4, 30°) on the S175, scaled with
 length (amplitude 5.25 m, H ≈ 10.5 m, λ ≈ 262 m). The heading autopilot steers; the agent
 changes its set-point and the engine telegraph. The task (:class:`CapsizeAvoidanceTask`) runs on
-:class:`ship_gym.envs.s175.S175Task`.
+:class:`ship_gym.envs.env_task.ShipEnvTask`.
 """
 
 from __future__ import annotations
@@ -22,8 +22,8 @@ from ship_gym.conventions import GRAVITY
 from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
 from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
+from ship_gym.envs.env_task import S175_MESH, ShipEnvTask, ship_kwargs, ship_particulars
 from ship_gym.envs.registration import max_episode_steps
-from ship_gym.envs.s175 import S175_MESH, S175Task, ship_kwargs
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.ship_task import StepStatistics, write_heading_observations
 from ship_gym.envs.validation import check_positive, check_range, check_real, check_weight
@@ -42,6 +42,9 @@ MAX_EPISODE_STEPS = max_episode_steps("CapsizeAvoidance")
 Matusiak ran 720 s)."""
 
 S175_LPP = 175.0  # [m]
+DEFAULT_WAVE_HEIGHT_M = (10.0, 11.0)
+"""H range [m] of the default episodes on the S175 (steepness ≈ 1/25 at λ = 1.5 L); another
+ship's default is this range × Lpp/175."""
 
 
 _TWO_PI = 2.0 * math.pi
@@ -75,17 +78,18 @@ def _apply_actions_kernel(
         shaft_speed[i] = clip_array_bound(shaft_target[i], n - max_change, n + max_change)
 
 
-class CapsizeAvoidanceTask(S175Task):
+class CapsizeAvoidanceTask(ShipEnvTask):
     """N capsize-avoidance episodes (see :class:`CapsizeAvoidanceEnv` for the arguments)."""
 
     def __init__(
         self,
         num_envs: int,
         *,
+        ship: str = "s175",
         froude_number: float = 0.35,
         froude_range: tuple[float, float] | None = (0.3, 0.4),
         sea_kind: Literal["regular", "irregular"] = "regular",
-        wave_height_range_m: tuple[float, float] = (10.0, 11.0),
+        wave_height_range_m: tuple[float, float] | None = None,
         wavelength_ratio_range: tuple[float, float] = (1.4, 1.6),
         wave_heading_range_deg: tuple[float, float] = (-45.0, 45.0),
         n_wave_components: int = 40,
@@ -112,6 +116,11 @@ class CapsizeAvoidanceTask(S175Task):
     ) -> None:
         args = dict(locals())  # the arguments, forwarded by name (ship_kwargs)
         check_real("froude_number", froude_number, low=0.05, high=0.5, unit="-")
+        lpp = float(ship_particulars(ship).lpp)
+        if wave_height_range_m is None:  # the S175's steep seas, scaled with the ship's length
+            scale = lpp / S175_LPP
+            low_h, high_h = DEFAULT_WAVE_HEIGHT_M
+            wave_height_range_m = (low_h * scale, high_h * scale)
         if sea_kind not in ("regular", "irregular"):
             raise ValueError(f"sea_kind must be 'regular' or 'irregular', got {sea_kind!r}")
         ratio = check_range(
@@ -119,8 +128,8 @@ class CapsizeAvoidanceTask(S175Task):
         )
         # deep water: T = √(2π λ / g) (the peak period of an irregular sea)
         periods = (
-            math.sqrt(2.0 * math.pi * ratio[0] * S175_LPP / GRAVITY),
-            math.sqrt(2.0 * math.pi * ratio[1] * S175_LPP / GRAVITY),
+            math.sqrt(2.0 * math.pi * ratio[0] * lpp / GRAVITY),
+            math.sqrt(2.0 * math.pi * ratio[1] * lpp / GRAVITY),
         )
         self.heading_rate = math.radians(
             check_positive("heading_rate_deg", heading_rate_deg, "deg", 45.0)
@@ -164,8 +173,8 @@ class CapsizeAvoidanceTask(S175Task):
         if froude_range is not None:
             low, high = froude_range
             speed_range = (
-                low * math.sqrt(GRAVITY * S175_LPP),
-                high * math.sqrt(GRAVITY * S175_LPP),
+                low * math.sqrt(GRAVITY * lpp),
+                high * math.sqrt(GRAVITY * lpp),
             )
         super().__init__(
             num_envs,

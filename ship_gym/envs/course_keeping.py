@@ -1,6 +1,6 @@
 """``ship_gym/CourseKeeping-v1``: steer the S175 on a heading in irregular seas with its rudder.
 
-The task (:class:`CourseKeepingTask`) runs on :class:`ship_gym.envs.s175.S175Task`; the
+The task (:class:`CourseKeepingTask`) runs on :class:`ship_gym.envs.env_task.ShipEnvTask`; the
 Gymnasium faces are :class:`CourseKeepingEnv` (one episode) and :class:`CourseKeepingVectorEnv`
 (N episodes in one BatchSimulator). The environment docstring (Gymnasium v5 template) lists
 every keyword argument with its unit.
@@ -17,8 +17,14 @@ from numpy.typing import NDArray
 
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
 from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
+from ship_gym.envs.env_task import (
+    RUDDER_LIMIT_DEG,
+    S175_MESH,
+    ShipEnvTask,
+    irregular_sea,
+    ship_kwargs,
+)
 from ship_gym.envs.registration import max_episode_steps
-from ship_gym.envs.s175 import RUDDER_LIMIT_DEG, S175_MESH, S175Task, irregular_sea, ship_kwargs
 from ship_gym.envs.ship_task import StepStatistics, clip_into, write_heading_observations
 from ship_gym.envs.validation import check_positive, check_real, check_weight
 from ship_gym.typing import IntegratorName, Precision
@@ -29,13 +35,14 @@ MAX_EPISODE_STEPS = max_episode_steps("CourseKeeping")
 """Time limit in control steps, from the registration (500 s at the default control_dt)."""
 
 
-class CourseKeepingTask(S175Task):
+class CourseKeepingTask(ShipEnvTask):
     """N course-keeping episodes (see :class:`CourseKeepingEnv` for the keyword arguments)."""
 
     def __init__(
         self,
         num_envs: int,
         *,
+        ship: str = "s175",
         froude_number: float = 0.25,
         speed_range_mps: tuple[float, float] | None = None,
         hs_range_m: tuple[float, float] = (3.0, 5.0),

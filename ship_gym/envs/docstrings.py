@@ -36,6 +36,7 @@ bounds of ``_BASE_OBSERVATIONS``, the rudder angle and the shaft speed)."""
 
 SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
     # name: (unit, meaning); an environment may give its own meaning for any of them
+    "ship": ("-", "bundled ship name or ship file (.toml; ship-gym ship check FILE)"),
     "froude_number": ("-", "reference speed U = Fn √(g L) (radiation, diffraction, propeller)"),
     "speed_range_mps": ("m/s", "initial speed range (self-propulsion rpm); keep near U"),
     "hs_range_m": ("m", "significant wave height range"),
@@ -45,12 +46,12 @@ SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
     "wave_spreading_s": ("-", "cos-2s spreading exponent (None: long-crested)"),
     "wave_ramp_time_s": ("s", "start-up ramp of the waves (Matusiak 2003, eq. 12)"),
     "gm_range_m": ("m", "GM range of the loading (per episode; None: nominal)"),
-    "kg_m": ("m", "KG of the nominal loading (None: 9.55 m)"),
-    "passenger_point_m": ("m", "body-frame passenger position (z down)"),
+    "kg_m": ("m", "KG of the nominal loading (None: the ship's; S175 9.55 m)"),
+    "passenger_point_m": ("m", "body-frame passenger position (z down; None: scaled S175 point)"),
     "physics_dt_s": ("s", "physics time step"),
     "control_dt_s": ("s", "control step (integer multiple of physics_dt_s)"),
     "integrator": ("-", '"holloway" (1 force evaluation/step) or "rk4" (4)'),
-    "hull_mesh": ("-", "S175 mesh (sections, panels below/above water, deck)"),
+    "hull_mesh": ("-", "offsets-hull mesh (sections, panels below/above water, deck)"),
     "precision": ("-", '"float32" or "float64" wave sums of the Froude–Krylov kernel'),
     "num_threads": ("-", "numba threads over the batch's ships (1: serial)"),
     "capsize_angle_deg": ("deg", "capsize roll angle (None: vanishing angle of the loading)"),

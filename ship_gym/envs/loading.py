@@ -75,9 +75,10 @@ class LoadingCondition:
 
 @lru_cache(maxsize=16)
 def _loading_condition(hull_name: str, overrides: tuple) -> LoadingCondition:
-    from ship_gym.hull import equilibrium, hydrostatics, load_hull, righting_arm
+    from ship_gym.hull import equilibrium, hydrostatics, righting_arm
+    from ship_gym.ship import hull_of
 
-    hull = load_hull(hull_name, **dict(overrides))
+    hull = hull_of(hull_name, **dict(overrides))
     eq = equilibrium(hull)
     hs = hydrostatics(hull, eq.heave, 0.0, eq.trim)
     heels = np.arange(0.0, 90.0 + 1e-9, 5.0)

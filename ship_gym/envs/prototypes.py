@@ -47,8 +47,7 @@ def prototype_simulator(setup: ShipSetup, num_ships: int, n_components: int) -> 
 
 @lru_cache(maxsize=16)
 def designed_propeller(hull_name: str, overrides: tuple) -> Any:
-    """The propeller designed for a library hull and overrides (cached per process)."""
-    from ship_gym.forces.propeller import design_propeller_for
-    from ship_gym.hull import load_hull
+    """The propeller designed for a ship and overrides (cached per process)."""
+    from ship_gym.ship import load_ship
 
-    return design_propeller_for(load_hull(hull_name, **dict(overrides)))
+    return load_ship(hull_name, **dict(overrides)).propeller()

@@ -1,6 +1,6 @@
 """``ship_gym/RideControl-v1``: reduce the vertical accelerations of the S175 in head seas.
 
-The task (:class:`RideControlTask`) runs on :class:`ship_gym.envs.s175.S175Task` with the
+The task (:class:`RideControlTask`) runs on :class:`ship_gym.envs.env_task.ShipEnvTask` with the
 comfort bookkeeping of :class:`ship_gym.envs.roll_stabilisation.ComfortShipTask`; the Gymnasium
 faces are :class:`RideControlEnv` and :class:`RideControlVectorEnv`.
 """
@@ -16,9 +16,9 @@ from numpy.typing import NDArray
 from ship_gym.comfort.metrics import ComfortSample
 from ship_gym.envs.base import TaskEnv, TaskStep, TaskVectorEnv
 from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
+from ship_gym.envs.env_task import S175_MESH, irregular_sea, point_scaled_from_s175, ship_kwargs
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.roll_stabilisation import ComfortShipTask
-from ship_gym.envs.s175 import S175_MESH, irregular_sea, ship_kwargs
 from ship_gym.envs.ship_task import StepStatistics
 from ship_gym.envs.validation import check_positive, check_weight
 from ship_gym.typing import IntegratorName, Precision
@@ -29,6 +29,9 @@ MAX_EPISODE_STEPS = max_episode_steps("RideControl")
 """Time limit in control steps, from the registration (250 s at the default control_dt)."""
 
 FOIL_LIMIT_DEG = 15.0
+S175_PASSENGER_POINT_M = (50.0, 0.0, -10.0)
+"""Default passenger position on the S175 [m] (forward, on the centreline, above the deck); on
+another ship scaled by :func:`~ship_gym.envs.env_task.point_scaled_from_s175`."""
 """T-foil angle limit of the servo [deg] (:data:`ship_gym.control.actuators.FOIL_SERVO`)."""
 
 
@@ -39,6 +42,7 @@ class RideControlTask(ComfortShipTask):
         self,
         num_envs: int,
         *,
+        ship: str = "s175",
         froude_number: float = 0.3,
         speed_range_mps: tuple[float, float] | None = None,
         hs_range_m: tuple[float, float] = (2.0, 4.0),
@@ -48,7 +52,7 @@ class RideControlTask(ComfortShipTask):
         wave_spreading_s: float | None = None,
         wave_ramp_time_s: float = 20.0,
         kg_m: float | None = None,
-        passenger_point_m: Sequence[float] = (50.0, 0.0, -10.0),
+        passenger_point_m: Sequence[float] | None = None,
         physics_dt_s: float = 0.05,
         control_dt_s: float = 0.25,
         integrator: IntegratorName = "holloway",
@@ -77,7 +81,11 @@ class RideControlTask(ComfortShipTask):
         self.action_names = (f"T-foil command (-1..1 = ±{FOIL_LIMIT_DEG:g} deg, + = nose up)",)
         super().__init__(
             num_envs,
-            passenger_point_m=passenger_point_m,
+            passenger_point_m=(
+                point_scaled_from_s175(ship, S175_PASSENGER_POINT_M)
+                if passenger_point_m is None
+                else passenger_point_m
+            ),
             actuators=(("t_foil_command", "t_foil", self.foil_limit),),
             comfort_time_constant_s=comfort_time_constant_s,
             rudder="autopilot",
@@ -144,14 +152,16 @@ class RideControlEnv(TaskEnv):
 
     ## Description
 
-    The hull is the ITTC S175 container ship at Fn = 0.3 (12.4 m/s, 24 kn), not a purpose-built
-    fast monohull: its hydrodynamic database (radiation, diffraction) is validated and bundled,
-    while a new hull would need its own BEM database; at Fn 0.3 in head seas the S175's pitch
-    and heave accelerations at its bow quarter are those ride control addresses. Its motions are
-    simulated in 6 DOF (:mod:`ship_gym.engine`): nonlinear Froude–Krylov and hydrostatic
+    The default ship is the ITTC S175 container ship at Fn = 0.3 (12.4 m/s, 24 kn), whose
+    database and seakeeping are validated; at Fn 0.3 in head seas its pitch and heave
+    accelerations at its bow quarter are those ride control addresses. A ship built for speed is
+    bundled too: ``ship="dtmb5415"`` (the DTMB 5415 combatant, Lpp 142 m, tested at Fn 0.28 and
+    0.41; its T-foil, fins and rudder estimated from its particulars,
+    :mod:`ship_gym.ship.appendages`), and any ship file works (``ship="my_ship.toml"``). The
+    motions are simulated in 6 DOF (:mod:`ship_gym.engine`): nonlinear Froude–Krylov and hydrostatic
     forces, radiation memory, diffraction, Ikeda roll damping, Holtrop resistance and a B-series
     propeller, hull manoeuvring forces, a rudder under the PID heading autopilot, and a 12.8 m²
-    T-foil under the forefoot (x = 65 m, ±15°, 20 °/s, :class:`ship_gym.forces.fins.TFoil`).
+    T-foil under the forefoot (S175: x = 65 m; ±15°, 20 °/s, :class:`ship_gym.forces.fins.TFoil`).
     The agent commands the T-foil. No stern flaps: the S175's cruiser stern has no immersed
     transom to carry them. The reward penalises the ISO 2631-1 W_f-weighted vertical
     acceleration at a passenger point (whose squared sum over an episode is the motion sickness

@@ -1,6 +1,6 @@
 """``ship_gym/RollStabilization-v1``: reduce the roll of the S175 in beam and quartering seas.
 
-The task (:class:`RollStabilizationTask`) runs on :class:`ship_gym.envs.s175.S175Task` with
+The task (:class:`RollStabilizationTask`) runs on :class:`ship_gym.envs.env_task.ShipEnvTask` with
 the comfort bookkeeping of :class:`ComfortShipTask` (accelerations at a passenger point,
 :mod:`ship_gym.comfort.metrics`); the Gymnasium faces are :class:`RollStabilizationEnv` (one
 episode) and :class:`RollStabilizationVectorEnv` (N episodes in one BatchSimulator). The
@@ -19,8 +19,15 @@ from numpy.typing import NDArray
 from ship_gym.comfort.metrics import ComfortSample, PassengerComfort
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
 from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
+from ship_gym.envs.env_task import (
+    RUDDER_LIMIT_DEG,
+    S175_MESH,
+    ShipEnvTask,
+    irregular_sea,
+    point_scaled_from_s175,
+    ship_kwargs,
+)
 from ship_gym.envs.registration import max_episode_steps
-from ship_gym.envs.s175 import RUDDER_LIMIT_DEG, S175_MESH, S175Task, irregular_sea, ship_kwargs
 from ship_gym.envs.ship_task import StepStatistics
 from ship_gym.envs.validation import check_point, check_positive, check_weight
 from ship_gym.typing import IntegratorName, Precision
@@ -38,10 +45,14 @@ MAX_EPISODE_STEPS = max_episode_steps("RollStabilization")
 
 FIN_LIMIT_DEG = 25.0
 """Fin angle limit of the servo [deg] (:data:`ship_gym.control.actuators.FIN_SERVO`)."""
+S175_PASSENGER_POINT_M = (-50.0, 10.0, -15.0)
+"""Default passenger position on the S175 [m] (aft, off the centreline, high in the
+superstructure); on another ship scaled by
+:func:`~ship_gym.envs.env_task.point_scaled_from_s175`."""
 
 
-class ComfortShipTask(S175Task):
-    """An :class:`S175Task` with actuated surfaces and comfort sampling at a passenger point.
+class ComfortShipTask(ShipEnvTask):
+    """An :class:`ShipEnvTask` with actuated surfaces and comfort sampling at a passenger point.
 
     Parameters
     ----------
@@ -55,7 +66,7 @@ class ComfortShipTask(S175Task):
     comfort_time_constant_s : float
         τ of the running RMS of the accelerations [s].
     **kwargs
-        :class:`S175Task` arguments.
+        :class:`ShipEnvTask` arguments.
     """
 
     def __init__(
@@ -147,6 +158,7 @@ class RollStabilizationTask(ComfortShipTask):
         self,
         num_envs: int,
         *,
+        ship: str = "s175",
         froude_number: float = 0.25,
         speed_range_mps: tuple[float, float] | None = None,
         hs_range_m: tuple[float, float] = (2.0, 5.0),
@@ -158,7 +170,7 @@ class RollStabilizationTask(ComfortShipTask):
         gm_range_m: tuple[float, float] | None = None,
         kg_m: float | None = None,
         rudder_roll_stabilization: bool = False,
-        passenger_point_m: Sequence[float] = (-50.0, 10.0, -15.0),
+        passenger_point_m: Sequence[float] | None = None,
         physics_dt_s: float = 0.1,
         control_dt_s: float = 0.5,
         integrator: IntegratorName = "holloway",
@@ -208,7 +220,11 @@ class RollStabilizationTask(ComfortShipTask):
         self.action_names = tuple(names)
         super().__init__(
             num_envs,
-            passenger_point_m=passenger_point_m,
+            passenger_point_m=(
+                point_scaled_from_s175(ship, S175_PASSENGER_POINT_M)
+                if passenger_point_m is None
+                else passenger_point_m
+            ),
             actuators=(("fins_command", "roll_fins", fin_limit),),
             comfort_time_constant_s=comfort_time_constant_s,
             rudder="command" if rudder_roll_stabilization else "autopilot",

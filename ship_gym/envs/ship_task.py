@@ -1,4 +1,4 @@
-"""Common machinery of the 6-DOF ship tasks: N episodes of the S175 in one BatchSimulator.
+"""Common machinery of the 6-DOF ship tasks: N episodes of one ship in one BatchSimulator.
 
 A :class:`ShipTask` is a :class:`ship_gym.envs.base.BatchedTask` whose N episodes are N ships of
 one :class:`ship_gym.engine.batch.BatchSimulator` (one hull, one force-model setup, each ship
@@ -37,8 +37,9 @@ Python loop in :meth:`ShipTask.step`):
 * **rendering** — :meth:`ShipTask.snapshot` (profile/section elevations from the wave field and a
   ring buffer of roll, pitch, heave and heading).
 
-:class:`~ship_gym.envs.s175.S175Task` builds a ShipTask of the S175 from the keyword arguments every
-ship environment shares (:data:`~ship_gym.envs.docstrings.SHIP_ARGUMENTS`). Its subclasses
+:class:`~ship_gym.envs.env_task.ShipEnvTask` builds a ShipTask of a ship (the S175 by default)
+from the keyword arguments every ship environment shares
+(:data:`~ship_gym.envs.docstrings.SHIP_ARGUMENTS`). Its subclasses
 (:mod:`ship_gym.envs.course_keeping`, :mod:`ship_gym.envs.capsize_avoidance`,
 :mod:`ship_gym.envs.roll_stabilisation`, :mod:`ship_gym.envs.ride_control`) define the actions →
 commands mapping, the extra observations and the reward terms; their environment docstrings are
@@ -357,7 +358,7 @@ class ShipTask(BatchedTask, abc.ABC):
     setup: ShipSetup
     sim: BatchSimulator
     num_threads: int = 1
-    """numba threads over the ships in the compiled loop (set by :class:`S175Task`)."""
+    """numba threads over the ships in the compiled loop (set by :class:`ShipEnvTask`)."""
     observations_bounded = True  # observations() is a float32 copy, clipped to the bounds
 
     def __init__(

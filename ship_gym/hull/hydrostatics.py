@@ -292,7 +292,12 @@ def equilibrium(
         r = pressure_integral(hull, v[0], heel, v[1])
         return np.array([(r.force[2] + mg) / mg, r.moment[1] / (mg * length)])
 
-    sol = root(residual, np.asarray(guess, dtype=float), method="hybr", tol=tol)
+    # MINPACK's finite-difference step is relative to |x| (absolute only at x = 0): a guess of
+    # round-off size (1e-17 m from an upright equilibrium) would give steps of 1e-25 m and a
+    # singular Jacobian, so such a guess starts from exactly zero
+    start = np.asarray(guess, dtype=float).copy()
+    start[np.abs(start) < np.array([1e-9 * hull.particulars.draught, 1e-9])] = 0.0
+    sol = root(residual, start, method="hybr", tol=tol)
     res = residual(sol.x)
     if not sol.success and np.max(np.abs(res)) > 1e-6:
         raise RuntimeError(

@@ -7,6 +7,7 @@ origin amidships on the design waterline) and closed up to a deck.
 from __future__ import annotations
 
 from collections.abc import Callable
+from importlib import resources
 from typing import Any
 
 import numpy as np
@@ -79,6 +80,88 @@ def s175(
     )
     particulars = Particulars(175.0, 25.4, draught, depth, dict(S175_REFERENCE))
     return Hull("s175", mesh, mass, particulars, rho, g)
+
+
+DTMB5415_REFERENCE = {
+    "Lpp_m": 142.0,
+    "Lwl_m": 142.18,
+    "Bwl_m": 19.06,
+    "T_m": 6.15,
+    "volume_m3": 8424.4,
+    "wetted_surface_m2": 2972.6,
+    "Cb": 0.507,
+    "Cm": 0.821,
+    "LCB_fwd_of_midship_m": -0.00683 * 142.0,
+    "LCG_fwd_of_midship_m": -0.652,
+    "GMt_m": 1.95,
+    "kxx_over_B": 0.37,
+    "kzz_over_Lpp": 0.25,
+    "service_speed_kn": 18.0,
+    "max_speed_kn": 30.0,
+    "Fn_design": 0.28,
+    "source": "SIMMAN 2014 workshop, US Navy combatant DTMB 5415, geometry and conditions "
+    "(simman2014.dk); hull: Gothenburg 2010 IGES of mathLab/WaveBEMapp-DTMB-5415 (MIT)",
+}
+
+
+def dtmb5415(
+    *,
+    n_sections: int = 60,
+    n_below: int = 12,
+    n_above: int = 6,
+    n_deck: int = 4,
+    n_end: int = 8,
+    depth: float = 12.5,
+    displacement_t: float = 8635.0,
+    kg: float = 7.555,
+    lcg: float = -0.652,
+    radii_of_gyration: tuple[float, float, float] = (7.05, 35.5, 35.5),
+    rho: float = RHO_SEAWATER,
+    g: float = GRAVITY,
+) -> Hull:
+    """The DTMB 5415 US Navy surface combatant (bare hull with sonar dome), meshed to the deck.
+
+    The ITTC/SIMMAN benchmark of a fast displacement ship (Lpp = 142 m, design Froude numbers
+    0.28–0.41, service speeds 18 and 30 kn). Offsets: ``ship_gym/data/dtmb5415/README.md``.
+
+    Parameters
+    ----------
+    n_sections, n_below, n_above, n_deck, n_end : int
+        Mesh resolution: sections along the hull, panels per side below/above the waterline,
+        panels across the deck and across each end plate row (the 15 m wide transom is
+        immersed: split, its panels stay below the ship's largest).
+    depth : float
+        Deck height above the baseline [m]; not part of the benchmark data (the hull surface
+        ends 2.5–10 m above the waterline): an assumed flat deck, wall-sided above the offsets.
+    displacement_t : float
+        Mass of the loading condition [t] (SIMMAN volume 8424.4 m³ × 1.025 t/m³).
+    kg : float
+        Height of G above the keel [m]: 7.555 gives the SIMMAN GM = 1.95 m on this mesh.
+    lcg : float
+        Longitudinal position of G [m], positive forward of amidships (SIMMAN: −0.652 m).
+    radii_of_gyration : tuple of float
+        r44, r55, r66 about G [m]: 0.37 Bwl and 0.25 Lpp (SIMMAN kxx/B, kzz/Lpp; kyy = kzz).
+    rho, g : float
+        Water density [kg/m³] and gravity [m/s²].
+    """
+    draught = 6.15
+    path = resources.files("ship_gym.data").joinpath("dtmb5415/offsets.csv")
+    mesh = hull_mesh_from_stations(
+        read_offsets_csv(str(path)),
+        draught=draught,
+        depth=depth,
+        n_sections=n_sections,
+        n_below=n_below,
+        n_above=n_above,
+        n_deck=n_deck,
+        n_end=n_end,
+        name="dtmb5415",
+    )
+    mass = MassProperties.from_radii_of_gyration(
+        displacement_t * 1e3, np.array([lcg, 0.0, draught - kg]), radii_of_gyration
+    )
+    particulars = Particulars(142.0, 19.06, draught, depth, dict(DTMB5415_REFERENCE))
+    return Hull("dtmb5415", mesh, mass, particulars, rho, g)
 
 
 def box_mesh(
@@ -309,6 +392,7 @@ def wigley(
 
 HULLS: dict[str, Callable[..., Hull]] = {
     "s175": s175,
+    "dtmb5415": dtmb5415,
     "box_barge": box_barge,
     "hemisphere": hemisphere,
     "wigley": wigley,
@@ -321,7 +405,7 @@ def load_hull(name: str, **overrides: Any) -> Hull:
     Parameters
     ----------
     name : str
-        One of ``"s175"``, ``"box_barge"``, ``"hemisphere"``, ``"wigley"``.
+        A library hull (:data:`HULLS`). A ship file's hull: ``ship_gym.ship.load_ship(path).hull``.
     **overrides
         Keyword arguments of the builder (e.g. ``kg=10.0``, ``n_sections=80``).
     """

@@ -164,6 +164,7 @@ def hull_mesh_from_stations(
     n_below: int = 10,
     n_above: int = 6,
     n_deck: int = 4,
+    n_end: int = 1,
     name: str = "hull",
 ) -> PanelMesh:
     """Closed mesh to the deck from a lines plan.
@@ -182,6 +183,9 @@ def hull_mesh_from_stations(
         Panels per side along the girth below and above the waterline.
     n_deck : int
         Panels across the deck.
+    n_end : int
+        Panels across each end plate (transom, stem) per girth row; > 1 keeps a wide immersed
+        transom from setting the largest panel (and so the highest frequency a BEM resolves).
 
     Returns
     -------
@@ -194,6 +198,7 @@ def hull_mesh_from_stations(
         ("n_below", n_below, 1),
         ("n_above", n_above, 1),
         ("n_deck", n_deck, 1),
+        ("n_end", n_end, 1),
     ):
         if int(value) != value or value < low:
             raise ValueError(f"{label} must be an integer >= {low}, got {value!r}")
@@ -238,16 +243,33 @@ def hull_mesh_from_stations(
             # the mirror image of its starboard twin's diagonal: an exactly symmetric hull
             polys.append(quad[1:] + quad[:1] if k >= port_start else quad)
     # end plates: rows between starboard point j and port point j; top row closes over the deck
+    extra: list[np.ndarray] = []  # end-plate vertices between starboard and port (n_end > 1)
     for i, forward in ((0, False), (n_sections - 1, True)):
         base = i * n_loop
         stbd_idx = [base + j for j in range(n_g)]
         deck_idx = [base + n_g + k for k in range(n_deck - 1)]
         port_idx = [base + (n_loop - j) % n_loop for j in range(n_g)]  # port_idx[0] = keel
+        # level j: starboard point j, n_end - 1 points across, port point j
+        levels = []
+        for j in range(n_g - 1):
+            a, b = verts[stbd_idx[j]], verts[port_idx[j]]
+            first = len(verts) + sum(len(e) for e in extra)
+            t = np.arange(1, n_end if j < n_g - 2 else 1)[:, None] / n_end
+            extra.append(a + t * (b - a))
+            levels.append([stbd_idx[j], *range(first, first + len(t)), port_idx[j]])
         for j in range(n_g - 2):
-            poly = [stbd_idx[j], stbd_idx[j + 1], port_idx[j + 1], port_idx[j]]
-            polys.append(poly[::-1] if forward else poly)
+            lo, hi = levels[j], levels[j + 1]
+            if j < n_g - 3:
+                for c in range(n_end):
+                    poly = [lo[c], hi[c], hi[c + 1], lo[c + 1]]
+                    polys.append(poly[::-1] if forward else poly)
+            else:  # last row: split below, whole above; starts off the split edge (fan)
+                poly = [hi[0], hi[-1], *lo[::-1]]
+                polys.append([poly[0], *poly[:0:-1]] if forward else poly)
         top = [stbd_idx[-2], stbd_idx[-1], *deck_idx, port_idx[-1], port_idx[-2]]
         polys.append(top[::-1] if forward else top)
+    if extra:
+        verts = np.vstack([verts, *extra])
     scale = float(np.ptp(verts[:, 0]) + np.ptp(verts[:, 2]))
     mesh = mesh_from_polygons(verts, polys, name=name, merge_tolerance=1e-7 * scale)
     mesh.check(closed=True)

@@ -18,9 +18,16 @@ Method
 * Port/starboard symmetry (capytaine ``ReflectionSymmetricMesh``, plane ``"xOz"``) is used when
   the mesh is its own mirror image in y (half the influence-matrix work and a cheaper
   block-circulant solve); fore/aft symmetry (plane ``"yOz"``) is nested inside when present too
-  (boxes, hemispheres, Wigley hulls), which quarters the work again.
-* Irregular frequencies are removed with an interior lid (``generate_lid``), placed slightly
-  below the free surface at z_c = −d (see :func:`lid_depth`): a lid at depth d moves the first
+  (boxes, hemispheres, Wigley hulls), which quarters the work again. The half (quarter) mesh
+  keeps our panels as they are and cuts only those straddling the plane (see
+  :func:`_positive_side`: capytaine's own clipper re-splits the panels that touch the plane,
+  which made the Wigley hull fail with an IndexError).
+* Irregular frequencies are removed with an interior lid that fills the hull's section at
+  z_c = −d (:func:`_conforming_lid`; capytaine's ``generate_lid`` is the fallback for sections
+  it cannot grid, such as two hulls: it covered only 27–86 % of the section of the library
+  hulls, Wigley 27 %, box barge 84 %, S175 86 %, and nothing once split by symmetry on the box
+  barge, leaving irregular frequencies: B44 < 0, 0.84 sway–roll damping asymmetry), placed
+  slightly below the free surface (see :func:`lid_depth`): a lid at depth d moves the first
   irregular frequency of the lidded body to about ω² ≈ g/d, so d = r_max/π (r_max the largest
   panel radius) puts it at twice the highest frequency the hull mesh resolves (λ ≥ 8 r_max). The
   lid is not put exactly on z = 0 because there both source and collocation points sit on the
@@ -29,17 +36,28 @@ Method
   +15 % at ka = 6 and +79 % at ka = 8; lid at d = r_max/π ≈ 0.02 a, +2 % and +6 %; lid at
   d = 0.2 a, an irregular frequency back at ka ≈ 5 (−18 %), as ω² ≈ g/d predicts; no lid, −44 %
   at ka = 2.5 (the hemisphere's own first irregular frequency). Below ka = 2 all lidded variants
-  agree with Hulme to 1.5 %.
+  agree with Hulme to 1.5 % (measured with ``generate_lid``; the conforming lid passes the same
+  Hulme test, ``tests/validation/test_bem_hemisphere.py``).
+* Each frequency is solved in turn (``n_jobs`` frequencies at a time in parallel) and can be
+  kept in a ``checkpoint`` folder, so that an interrupted or failed run resumes where it
+  stopped; capytaine's exceptions are raised as :class:`BEMError` naming the hull, the
+  frequency and what to change.
 """
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 import importlib.util
+import itertools
 import logging
+import os
+import tempfile
 import time
 import warnings
 from collections.abc import Sequence
 from datetime import UTC, datetime
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -178,6 +196,12 @@ def is_mirror_symmetric(vertices: np.ndarray, faces: np.ndarray, axis: int) -> b
     return all(frozenset(mirror[f].tolist()) in keys for f in faces)
 
 
+def _panels_in_plane(vertices: np.ndarray, faces: np.ndarray, axis: int) -> bool:
+    """Whether a panel lies in the plane ``coordinate[axis] = 0`` (it cannot be mirrored)."""
+    size = float(np.ptp(vertices, axis=0).max())
+    return bool(np.any(np.all(np.abs(vertices[faces, axis]) <= 1e-7 * max(size, 1e-12), axis=1)))
+
+
 def _validate_mass_matrix(mass_matrix: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
     """Checked 6×6 rigid-body mass matrix about O, its mass [kg] and centre of gravity [m]."""
     m6 = np.asarray(mass_matrix, dtype=float)
@@ -233,6 +257,228 @@ def _validate_directions(wave_directions: Sequence[float] | np.ndarray) -> np.nd
 
 
 # ----------------------------------------------------------------------------- capytaine side
+class BEMError(RuntimeError):
+    """capytaine failed on a hull: names the hull, the frequency being solved and what to change.
+
+    Attributes
+    ----------
+    hull : str
+        Name of the body.
+    omega : float or None
+        Frequency [rad/s] being solved (0 and inf: the radiation limits), None while building
+        the capytaine body.
+    hint : str
+        What to change (mesh, lid, symmetry, frequency range).
+    """
+
+    def __init__(self, hull: str, omega: float | None, hint: str, cause: BaseException) -> None:
+        self.hull, self.omega, self.hint = hull, omega, hint
+        where = (
+            "while building the capytaine body (mesh, lid, symmetry)"
+            if omega is None
+            else f"while solving omega = {omega:.6g} rad/s"
+        )
+        super().__init__(
+            f"{hull}: capytaine failed {where}: {type(cause).__name__}: {cause}; {hint}"
+        )
+
+
+def _bem_hint(exc: BaseException, omega: float | None) -> str:
+    """What to change after a capytaine exception ``exc`` at ``omega`` [rad/s] (None: set-up)."""
+    text = f"{type(exc).__name__} {exc}".lower()
+    if isinstance(exc, np.linalg.LinAlgError) or "singular" in text:
+        return (
+            "the BEM matrix is singular: look for overlapping or duplicated panels and lid "
+            "panels, or an irregular frequency (keep lid=True, or lower omega_max)"
+        )
+    if omega is not None and (omega == 0.0 or np.isinf(omega)):
+        return (
+            "this is a radiation limit: pass zero_frequency=False / infinite_frequency=False to "
+            "skip it, and check the mesh (degenerate or folded panels)"
+        )
+    if omega is None or isinstance(exc, IndexError | KeyError):
+        return (
+            "check the mesh: degenerate or folded panels, panels on a symmetry plane, vertices "
+            "that are only nearly symmetric (try symmetry=False), or the lid (try lid=False)"
+        )
+    return (
+        "check the mesh (degenerate or folded panels; try symmetry=False), the lid (try "
+        "lid=False) and the frequency range (omega up to resolved_omega_max of the mesh)"
+    )
+
+
+def _positive_side(
+    vertices: np.ndarray, faces: np.ndarray, axis: int, *, name: str
+) -> tuple[np.ndarray, np.ndarray]:
+    """Panels of a mirror-symmetric mesh on the side ``coordinate[axis] >= 0`` (capytaine frame).
+
+    Panels wholly on that side (vertices on the plane allowed) are kept as they are; only panels
+    that straddle the plane are cut, by capytaine's clipper. capytaine's ``clipped`` is not used
+    on the whole mesh because it re-splits every panel that merely *touches* the plane: a folded
+    quad with three vertices on the plane (the Wigley hull's stem and stern foot, where keel and
+    stem meet on the centre plane) leaves a triangle lying *in* the plane, which the reflection
+    then duplicates. The symmetric mesh then holds a pair of coincident panels that
+    ``merged()`` drops, its face count no longer matches the merged mesh, and capytaine fails
+    with an IndexError in ``connected_components`` (``first_irregular_frequency_estimate``).
+
+    Raises
+    ------
+    ValueError
+        If a panel lies in the symmetry plane (a zero-thickness fin cannot be mirrored).
+    """
+    v = np.array(vertices, dtype=float)
+    tol = 1e-7 * max(float(np.ptp(v, axis=0).max()), 1e-12)
+    v[np.abs(v[:, axis]) <= tol, axis] = 0.0  # exactly on the plane: mirrors onto itself
+    s = v[faces, axis]
+    in_plane = np.all(s == 0.0, axis=1)
+    if np.any(in_plane):
+        k = int(np.flatnonzero(in_plane)[0])
+        raise ValueError(
+            f"{name}: {int(in_plane.sum())} panel(s) lie in the symmetry plane "
+            f"{'xOz' if axis == 1 else 'yOz'} (first: face {k}); remove them from the mesh or "
+            "pass symmetry=False"
+        )
+    keep = np.all(s >= 0.0, axis=1)
+    straddle = np.any(s < 0.0, axis=1) & np.any(s > 0.0, axis=1)
+    out_v, out_f = v, faces[keep]
+    if np.any(straddle):
+        import capytaine as cpt
+
+        normal = np.zeros(3)
+        normal[axis] = -1.0  # capytaine keeps the side opposite to the normal
+        cut = cpt.Mesh(v, faces[straddle], auto_check=False).clipped(
+            origin=(0.0, 0.0, 0.0), normal=tuple(normal)
+        )
+        cut_v = np.asarray(cut.vertices, dtype=float)
+        cut_v[np.abs(cut_v[:, axis]) <= tol, axis] = 0.0
+        out_f = np.vstack([out_f, np.asarray(cut.faces, dtype=np.int64) + len(v)])
+        out_v = np.vstack([v, cut_v])
+    return out_v, out_f
+
+
+def _section_segments(vertices: np.ndarray, faces: np.ndarray, z: float) -> np.ndarray:
+    """(n, 2, 2) horizontal (x, y) segments where the panels cross the plane z (capytaine frame).
+
+    Each panel edge whose ends lie strictly below and at-or-above the plane is cut; the cuts of
+    one panel are paired (upward cut, next downward cut) in the panel's vertex order, so that
+    neighbouring panels' segments chain into consistently oriented loops.
+    """
+    p = vertices[faces]  # (m, 4, 3); a triangle repeats its last vertex: a zero edge, no cut
+    q = np.roll(p, -1, axis=1)
+    sa, sb = p[..., 2] - z, q[..., 2] - z
+    cut = (sa < 0.0) != (sb < 0.0)
+    t = np.where(cut, sa / np.where(cut, sa - sb, 1.0), 0.0)
+    pts = p[..., :2] + t[..., None] * (q[..., :2] - p[..., :2])
+    up = cut & (sa < 0.0)  # the edge leaves the part below the plane
+    segs = []
+    for i in np.flatnonzero(cut.any(axis=1)):
+        k = np.flatnonzero(cut[i])
+        k = np.roll(k, -int(np.argmax(up[i, k])))  # start at an upward cut: (up, down) pairs
+        for a, b in zip(k[0::2], k[1::2], strict=False):
+            segs.append(pts[i, [a, b]])
+    return np.array(segs, dtype=float).reshape(-1, 2, 2)
+
+
+def _conforming_lid(
+    vertices: np.ndarray, faces: np.ndarray, z: float
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """Lid panels filling the hull's horizontal section at z (capytaine frame), or None.
+
+    The section at the lid depth is cut from the hull panels; the lid is a structured grid
+    between its edges: stations at the x of the section's own vertices (merged when closer than
+    half the target panel size h, the root-mean-square hull panel size; subdivided when further
+    apart than 2.5 h), and at each station an even number of steps of at most h from the lowest
+    to the highest y of the section (an even number: y = 0 is a grid line). The
+    lid edge therefore follows the hull section panel by panel. This replaces capytaine's
+    ``generate_lid`` (a rectangle of candidate points kept by a point-in-panel parity count),
+    which drops the candidates that fall on edges of the hull panels below: on a box barge,
+    whose flat bottom is a grid like the candidates', it covered 40 % of the waterplane and,
+    split by the symmetry planes, nothing at all.
+
+    Returns None when the section is not a single region spanned by one y-interval per x
+    (checked by comparing the lid's area with the section's): the caller falls back to
+    ``generate_lid``.
+    """
+    segs = _section_segments(vertices, faces, z)
+    if len(segs) < 3:
+        return None
+    # signed area of the section (Green's theorem over the oriented segments)
+    area = 0.5 * float(np.sum(segs[:, 0, 0] * segs[:, 1, 1] - segs[:, 1, 0] * segs[:, 0, 1]))
+    area = abs(area)
+    pts = segs.reshape(-1, 2)
+    span = float(np.ptp(pts, axis=0).max())
+    if area <= 1e-9 * span**2:
+        return None
+    p = vertices[faces]
+    panel_area = 0.5 * np.linalg.norm(np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1]), axis=1)
+    h = float(np.sqrt(np.mean(panel_area)))
+    xs = np.unique(pts[:, 0])
+    stations = [float(xs[0])]
+    for x in xs[1:]:
+        if x - stations[-1] >= 0.5 * h:
+            stations.append(float(x))
+    if xs[-1] - stations[-1] > 1e-9 * span:  # keep the far end exactly
+        if xs[-1] - stations[-1] < 0.5 * h and len(stations) > 1:
+            stations[-1] = float(xs[-1])
+        else:
+            stations.append(float(xs[-1]))
+    fine: list[float] = [stations[0]]
+    for a, b in itertools.pairwise(stations):
+        n = max(1, int(np.ceil((b - a) / (2.5 * h))))
+        fine.extend(np.linspace(a, b, n + 1)[1:].tolist())
+    x_st = np.array(fine)
+    x0, x1 = segs[:, 0, 0], segs[:, 1, 0]
+    y0, y1 = segs[:, 0, 1], segs[:, 1, 1]
+    lo, hi = np.minimum(x0, x1), np.maximum(x0, x1)
+    eps = 1e-9 * span
+    y_lo, y_hi = np.empty(len(x_st)), np.empty(len(x_st))
+    for k, x in enumerate(x_st):
+        on = (lo <= x + eps) & (hi >= x - eps)
+        if not np.any(on):
+            return None
+        dx = x1[on] - x0[on]
+        par = np.abs(dx) <= eps
+        t = np.clip((x - x0[on]) / np.where(par, 1.0, dx), 0.0, 1.0)
+        ys = np.where(par, y0[on], y0[on] + t * (y1[on] - y0[on]))
+        ys = np.concatenate([ys, y1[on][par]])
+        y_lo[k], y_hi[k] = ys.min(), ys.max()
+    width = float(np.max(y_hi - y_lo))
+    n_y = max(2, 2 * int(np.ceil(width / (2.0 * h))))
+    u = np.linspace(0.0, 1.0, n_y + 1)
+    grid = np.stack(
+        [
+            np.broadcast_to(x_st[:, None], (len(x_st), n_y + 1)),
+            y_lo[:, None] + (y_hi - y_lo)[:, None] * u[None, :],
+            np.full((len(x_st), n_y + 1), z),
+        ],
+        axis=-1,
+    ).reshape(-1, 3)
+    key = np.round(grid / (1e-9 * span)).astype(np.int64)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    inverse = inverse.ravel()
+    lid_v = grid[first]
+    lid_f = []
+    m = n_y + 1
+    for i in range(len(x_st) - 1):
+        for j in range(n_y):
+            quad = [inverse[i * m + j], inverse[(i + 1) * m + j], inverse[(i + 1) * m + j + 1],
+                    inverse[i * m + j + 1]]  # fmt: skip
+            ring = [int(q) for k, q in enumerate(quad) if q != quad[k - 1]]
+            ring = list(dict.fromkeys(ring))
+            if len(ring) == 3:
+                lid_f.append([*ring, ring[2]])
+            elif len(ring) == 4:
+                lid_f.append(ring)
+    if not lid_f:
+        return None
+    lid_faces = np.array(lid_f, dtype=np.int64)
+    q = lid_v[lid_faces]
+    lid_area = 0.5 * float(np.abs(np.cross(q[:, 2] - q[:, 0], q[:, 3] - q[:, 1])[:, 2]).sum())
+    if abs(lid_area / area - 1.0) > 0.02:
+        return None
+    return lid_v, lid_faces
+
+
 def _capytaine_body(
     vertices_c: np.ndarray,
     faces: np.ndarray,
@@ -243,37 +489,52 @@ def _capytaine_body(
     lid_z: float,
     cog_c: np.ndarray,
     mass: float,
-) -> tuple[Any, Any, int]:
-    """(FloatingBody for BEM, plain full-mesh FloatingBody for hydrostatics, lid panel count)."""
+) -> tuple[Any, Any, int, str]:
+    """(FloatingBody for BEM, plain full-mesh FloatingBody for hydrostatics, lid panel count,
+    how the lid was made)."""
     import capytaine as cpt
 
     full = cpt.Mesh(vertices_c, faces, name=name)
     dofs = cpt.rigid_body_dofs(rotation_center=np.zeros(3))
     plain_body = cpt.FloatingBody(mesh=full, dofs=dofs, center_of_mass=cog_c, mass=mass, name=name)
 
-    def split(m: Any) -> Any:
+    def split(v: np.ndarray, f: np.ndarray, label: str) -> Any:
         if symmetry == SYMMETRY_NONE:
-            return m
-        half = m.clipped(origin=(0.0, 0.0, 0.0), normal=(0.0, -1.0, 0.0))  # keeps y >= 0
+            return cpt.Mesh(v, f, name=label)
+        hv, hf = _positive_side(v, f, 1, name=label)  # y_c >= 0
         if symmetry == SYMMETRY_Y:
-            return cpt.ReflectionSymmetricMesh(half, plane="xOz", name=m.name)
-        quarter = half.clipped(origin=(0.0, 0.0, 0.0), normal=(-1.0, 0.0, 0.0))  # keeps x >= 0
-        inner = cpt.ReflectionSymmetricMesh(quarter, plane="yOz")
-        return cpt.ReflectionSymmetricMesh(inner, plane="xOz", name=m.name)
+            return cpt.ReflectionSymmetricMesh(cpt.Mesh(hv, hf), plane="xOz", name=label)
+        qv, qf = _positive_side(hv, hf, 0, name=label)  # and x >= 0
+        inner = cpt.ReflectionSymmetricMesh(cpt.Mesh(qv, qf), plane="yOz")
+        return cpt.ReflectionSymmetricMesh(inner, plane="xOz", name=label)
 
-    hull_mesh = split(full)
+    hull_mesh = split(vertices_c, faces, name)
     lid_mesh = None
     n_lid = 0
+    lid_source = "none"
     if lid:
-        full_lid = full.generate_lid(z=lid_z, name=f"lid of {name}")
-        if full_lid.nb_faces > 0:
-            lid_mesh = split(full_lid)
+        made = _conforming_lid(vertices_c, faces, lid_z)
+        lid_source = "conforming grid of the hull section at the lid depth"
+        if made is None:
+            generated = full.generate_lid(z=lid_z)
+            made = (np.asarray(generated.vertices), np.asarray(generated.faces, dtype=np.int64))
+            lid_source = "capytaine generate_lid"
+        if len(made[1]) > 0:
+            lid_mesh = split(made[0], made[1], f"lid of {name}")
             n_lid = int(lid_mesh.nb_faces)
         else:
+            lid_source = "none"
             warnings.warn(
                 f"{name}: no lid could be generated at z = {-lid_z:.3g} m below the waterline "
                 "(no waterplane?); irregular frequencies are not removed",
                 stacklevel=3,
+            )
+    for label, m in (("hull", hull_mesh), ("lid", lid_mesh)):
+        if m is not None and symmetry != SYMMETRY_NONE and m.merged().nb_faces != m.nb_faces:
+            raise RuntimeError(
+                f"{name}: the symmetric {label} mesh holds coincident panels "
+                f"({m.nb_faces} panels, {m.merged().nb_faces} once merged): a panel lies on a "
+                "symmetry plane; pass symmetry=False"
             )
     body = cpt.FloatingBody(
         mesh=hull_mesh,
@@ -283,10 +544,162 @@ def _capytaine_body(
         mass=mass,
         name=name,
     )
-    return body, plain_body, n_lid
+    return body, plain_body, n_lid, lid_source
 
 
-def _solve(
+_FORCES = ("diffraction_force", "Froude_Krylov_force", "excitation_force")
+_CHECKPOINT_FORMAT = "ship_gym.hydro.bem checkpoint v1"
+
+
+def _solve_frequency(
+    solver: Any,
+    body: Any,
+    omega: float,
+    beta_c: np.ndarray,
+    *,
+    rho: float,
+    g: float,
+) -> dict[str, np.ndarray]:
+    """Solve the radiation (and, for 0 < ω < ∞, diffraction) problems at one frequency.
+
+    Returns arrays in capytaine's frame: ``added_mass`` and ``radiation_damping`` (6, 6)
+    [influenced, radiating] and, at finite ω, the complex wave forces (n_β, 6) for the headings
+    ``np.sort(beta_c)``. capytaine's exceptions (raised, or returned as failed results) are
+    raised as they are; :func:`compute_database` adds the hull, ω and a hint.
+    """
+    import capytaine as cpt
+
+    problems = [
+        cpt.RadiationProblem(body=body, omega=omega, radiating_dof=dof, rho=rho, g=g)
+        for dof in DOF_NAMES
+    ]
+    finite = bool(np.isfinite(omega) and omega > 0.0)
+    if finite:
+        problems += [
+            cpt.DiffractionProblem(body=body, omega=omega, wave_direction=float(b), rho=rho, g=g)
+            for b in beta_c
+        ]
+    results = solver.solve_all(
+        problems,
+        keep_details=False,
+        progress_bar=False,
+        _check_wavelength=False,  # checked once in compute_database
+    )
+    failed = [r for r in results if hasattr(r, "exception")]
+    if failed:
+        raise failed[0].exception
+    ds = cpt.assemble_dataset(results, freq=False, wavelength=False, mesh=False, hydrostatics=False)
+    dofs = list(DOF_NAMES)
+    ds = ds.assign_coords(
+        influenced_dof=np.asarray(ds["influenced_dof"].values, dtype=str),
+        radiating_dof=np.asarray(ds["radiating_dof"].values, dtype=str),
+    )
+    out: dict[str, np.ndarray] = {"omega": np.array(omega, dtype=np.float64)}
+    for key in ("added_mass", "radiation_damping"):
+        x = ds[key].sel(influenced_dof=dofs, radiating_dof=dofs)
+        out[key] = np.asarray(x.transpose(..., "influenced_dof", "radiating_dof").values, float)
+        out[key] = out[key].reshape(6, 6)
+    if finite:
+        if not np.allclose(ds["wave_direction"].values, np.sort(beta_c), rtol=0.0, atol=1e-12):
+            raise RuntimeError(
+                f"internal error: capytaine headings {ds['wave_direction'].values} do not match "
+                f"{np.sort(beta_c)}"
+            )
+        for key in _FORCES:
+            x = ds[key].sel(influenced_dof=dofs).transpose(..., "wave_direction", "influenced_dof")
+            out[key] = np.asarray(x.values, dtype=complex).reshape(len(beta_c), 6)
+    return out
+
+
+def _checkpoint_key(
+    vertices: np.ndarray,
+    faces: np.ndarray,
+    *,
+    rho: float,
+    g: float,
+    mass_matrix: np.ndarray,
+    omega: float,
+    wave_directions: np.ndarray,
+    lid: bool,
+    lid_z: float,
+    symmetry: str,
+    capytaine_version: str,
+    lid_source: str = "",
+) -> str:
+    """SHA-256 of everything that defines the BEM problems at one frequency (hex digest).
+
+    ``_CHECKPOINT_FORMAT`` is hashed too: change it when the way the problems are built from
+    these inputs changes (mesh split, lid construction), so that old checkpoints are not reused.
+    """
+    h = hashlib.sha256(_CHECKPOINT_FORMAT.encode())
+    for arr in (
+        np.asarray(vertices, dtype=np.float64),
+        np.asarray(faces, dtype=np.int64),
+        np.asarray(mass_matrix, dtype=np.float64),
+        np.asarray(wave_directions, dtype=np.float64),
+        np.array([rho, g, omega, lid_z], dtype=np.float64),
+    ):
+        h.update(repr(arr.shape).encode())
+        h.update(np.ascontiguousarray(arr).tobytes())
+    h.update(
+        f"lid={bool(lid)}:{lid_source};symmetry={symmetry};capytaine={capytaine_version}".encode()
+    )
+    return h.hexdigest()
+
+
+def _checkpoint_dir(checkpoint: str | os.PathLike[str]) -> Path:
+    """The checkpoint folder, created if needed; ValueError naming it when unusable."""
+    path = Path(checkpoint)
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"checkpoint must be a directory, got the file {str(path)!r}")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ValueError(f"checkpoint: cannot create the directory {str(path)!r}: {exc}") from None
+    if not os.access(path, os.W_OK):
+        raise ValueError(f"checkpoint: the directory {str(path)!r} is not writable")
+    return path
+
+
+def _write_checkpoint(path: Path, arrays: dict[str, np.ndarray]) -> None:
+    """Write ``arrays`` to ``path`` (.npz) atomically: a temporary file, then os.replace."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}-", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            np.savez(fh, allow_pickle=False, **arrays)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def _read_checkpoint(path: Path, omega: float, n_beta: int) -> dict[str, np.ndarray] | None:
+    """The arrays of one solved frequency, or None if the file is missing or unreadable."""
+    if not path.is_file():
+        return None
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            out = {key: data[key] for key in data.files}
+    except (OSError, ValueError, EOFError) as exc:
+        LOG.warning("ignoring unreadable BEM checkpoint %s (%s); solving again", path, exc)
+        return None
+    finite = bool(np.isfinite(omega) and omega > 0.0)
+    shapes = {"added_mass": (6, 6), "radiation_damping": (6, 6)}
+    if finite:
+        shapes.update({key: (n_beta, 6) for key in _FORCES})
+    if float(out.get("omega", np.nan)) != omega and not (
+        np.isinf(omega) and np.isinf(out.get("omega", 0.0))
+    ):
+        LOG.warning("ignoring BEM checkpoint %s: it holds another frequency", path)
+        return None
+    if any(key not in out or out[key].shape != shape for key, shape in shapes.items()):
+        LOG.warning("ignoring BEM checkpoint %s: unexpected content", path)
+        return None
+    return out
+
+
+def _solve_all_frequencies(
     body: Any,
     omega: np.ndarray,
     beta_c: np.ndarray,
@@ -296,55 +709,97 @@ def _solve(
     n_jobs: int,
     progress: bool,
     name: str,
-) -> tuple[list[Any], list[float]]:
-    """Solve every radiation/diffraction problem; returns results and seconds per frequency."""
+    keys: list[str],
+    checkpoint_dir: Path | None,
+) -> tuple[list[dict[str, np.ndarray]], list[float], int]:
+    """Solve every frequency in chunks, reusing and writing checkpoints.
+
+    Returns the per-frequency arrays (see :func:`_solve_frequency`), the seconds spent per
+    frequency (as recorded when it was solved) and the number of frequencies read back from
+    ``checkpoint_dir``.
+    """
     import capytaine as cpt
     from tqdm.auto import tqdm
 
     solver = cpt.BEMSolver()
-
-    def problems_at(w: float) -> list[Any]:
-        pbs = [
-            cpt.RadiationProblem(body=body, omega=w, radiating_dof=dof, rho=rho, g=g)
-            for dof in DOF_NAMES
-        ]
-        if np.isfinite(w) and w > 0.0:
-            pbs += [
-                cpt.DiffractionProblem(body=body, omega=w, wave_direction=float(b), rho=rho, g=g)
-                for b in beta_c
-            ]
-        return pbs
-
-    results: list[Any] = []
-    timings: list[float] = []
-    if n_jobs == 1:
-        for w in tqdm(omega, desc=f"BEM {name}", unit="freq", disable=not progress):
+    solved: list[dict[str, np.ndarray] | None] = [None] * len(omega)
+    n_reused = 0
+    if checkpoint_dir is not None:
+        for k, (w, key) in enumerate(zip(omega, keys, strict=True)):
+            solved[k] = _read_checkpoint(checkpoint_dir / f"{key}.npz", float(w), len(beta_c))
+            n_reused += solved[k] is not None
+    todo = [k for k in range(len(omega)) if solved[k] is None]
+    chunk = 1 if n_jobs == 1 else n_jobs
+    with tqdm(
+        total=len(omega), initial=n_reused, desc=f"BEM {name}", unit="freq", disable=not progress
+    ) as bar:
+        for start in range(0, len(todo), chunk):
+            ks = todo[start : start + chunk]
             t0 = time.perf_counter()
-            results += solver.solve_all(
-                problems_at(float(w)),
-                keep_details=False,
-                progress_bar=False,
-                _check_wavelength=False,  # checked once in compute_database
-            )
-            timings.append(time.perf_counter() - t0)
-    else:
-        t0 = time.perf_counter()
-        problems = [pb for w in omega for pb in problems_at(float(w))]
-        results = solver.solve_all(
-            problems,
-            keep_details=False,
-            n_jobs=n_jobs,
-            progress_bar=progress,
-            _check_wavelength=False,
-        )
-        timings = [(time.perf_counter() - t0) / len(omega)] * len(omega)
-    failed = [r for r in results if hasattr(r, "exception")]
-    if failed:
-        raise RuntimeError(
-            f"{name}: {len(failed)} of {len(results)} BEM problems failed; first: "
-            f"{failed[0].problem}: {failed[0].exception!r}"
-        )
-    return results, timings
+            if len(ks) == 1:
+                w = float(omega[ks[0]])
+                try:
+                    out = [_solve_frequency(solver, body, w, beta_c, rho=rho, g=g)]
+                except Exception as exc:
+                    raise BEMError(name, w, _bem_hint(exc, w), exc) from exc
+            else:
+                import joblib
+
+                try:
+                    out = joblib.Parallel(n_jobs=len(ks))(
+                        joblib.delayed(_solve_frequency)(
+                            cpt.BEMSolver(), body, float(omega[k]), beta_c, rho=rho, g=g
+                        )
+                        for k in ks
+                    )
+                except Exception as exc:
+                    w = float(omega[ks[0]])
+                    raise BEMError(
+                        name,
+                        w,
+                        f"(chunk of omega = {w:.6g} to {float(omega[ks[-1]]):.6g} "
+                        f"rad/s) {_bem_hint(exc, w)}",
+                        exc,
+                    ) from exc
+            seconds = (time.perf_counter() - t0) / len(ks)
+            for k, arrays in zip(ks, out, strict=True):
+                arrays["seconds"] = np.array(seconds, dtype=np.float64)
+                solved[k] = arrays
+                if checkpoint_dir is not None:
+                    _write_checkpoint(checkpoint_dir / f"{keys[k]}.npz", arrays)
+            bar.update(len(ks))
+    done = [s for s in solved if s is not None]
+    assert len(done) == len(omega)
+    return done, [float(s.get("seconds", np.nan)) for s in done], int(n_reused)
+
+
+def _assemble(
+    solved: list[dict[str, np.ndarray]], omega: np.ndarray, beta_c: np.ndarray, *, g: float
+) -> xr.Dataset:
+    """capytaine-frame dataset (merged complex values) from the per-frequency arrays."""
+    n_b = len(beta_c)
+    nan_forces = np.full((n_b, 6), np.nan + 1j * np.nan)
+    dof = list(DOF_NAMES)
+    data: dict[str, Any] = {
+        key: (("omega", "influenced_dof", "radiating_dof"), np.stack([s[key] for s in solved]))
+        for key in ("added_mass", "radiation_damping")
+    }
+    for key in _FORCES:
+        stack = np.stack([s.get(key, nan_forces) for s in solved]).astype(complex)
+        data[key] = (("omega", "wave_direction", "influenced_dof"), stack)
+    with np.errstate(divide="ignore"):
+        period = 2.0 * np.pi / omega
+    return xr.Dataset(
+        data,
+        coords={
+            "omega": omega,
+            "period": ("omega", period),
+            "wavenumber": ("omega", omega**2 / g),
+            "influenced_dof": dof,
+            "radiating_dof": dof,
+            "wave_direction": np.asarray(beta_c, dtype=float),
+        },
+    )
 
 
 # ----------------------------------------------------------------------------- public API
@@ -364,6 +819,7 @@ def compute_database(
     n_jobs: int = 1,
     progress: bool = True,
     name: str | None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
 ) -> xr.Dataset:
     """Radiation/diffraction database of an immersed hull, in ship_gym's body frame.
 
@@ -398,12 +854,21 @@ def compute_database(
         Add the radiation problems at ω = 0 and ω = ∞ (first and last entries of the ``omega``
         axis).
     n_jobs : int
-        Parallel worker processes (needs the optional ``joblib`` package when > 1). With 1, the
-        frequencies are solved in turn with a progress bar.
+        Parallel worker processes (needs the optional ``joblib`` package when > 1). The
+        frequencies are solved in chunks (one frequency with 1 job, ``n_jobs`` frequencies in
+        parallel otherwise) with a progress bar.
     progress : bool
         Show a progress bar.
     name : str, optional
         Label of the body (default: the mesh name).
+    checkpoint : str or os.PathLike, optional
+        Directory (created if needed) where each solved frequency is written as soon as its
+        chunk is done (``<key>.npz``, atomically: a temporary file, then ``os.replace``). The key
+        is a SHA-256 of everything that defines the problems at that frequency: mesh vertices
+        and faces, rho, g, mass matrix, ω, wave directions, lid (and its depth), symmetry and
+        the capytaine version. A rerun with the same directory reads the frequencies already
+        there instead of solving them again, so an interrupted run loses at most one chunk;
+        files of other problems in the directory are ignored.
 
     Returns
     -------
@@ -419,8 +884,10 @@ def compute_database(
     ValueError
         For bad inputs (mesh above the waterline or with inward normals, bad frequency or
         heading arrays, bad mass matrix…).
-    RuntimeError
-        If a BEM problem fails.
+    BEMError
+        (a RuntimeError) if capytaine fails while building the body or solving a frequency:
+        names the hull, the frequency and what to change. Frequencies solved before the
+        failure are kept in ``checkpoint`` when given.
     """
     import capytaine as cpt
 
@@ -432,6 +899,7 @@ def compute_database(
         raise ValueError(f"rho must be a positive water density [kg/m^3], got {rho!r}")
     if not (np.isfinite(g) and g > 0.0):
         raise ValueError(f"g must be a positive gravitational acceleration [m/s^2], got {g!r}")
+    checkpoint_dir = None if checkpoint is None else _checkpoint_dir(checkpoint)
     if int(n_jobs) != n_jobs or n_jobs < 1:
         raise ValueError(f"n_jobs must be a positive integer, got {n_jobs!r}")
     if n_jobs > 1 and importlib.util.find_spec("joblib") is None:
@@ -471,10 +939,18 @@ def compute_database(
     sym_y = is_mirror_symmetric(vertices, faces, axis=1)
     if symmetry is True and not sym_y:
         raise ValueError(f"{name}: symmetry=True but the mesh is not port/starboard symmetric")
-    if symmetry is False or not sym_y:
+    if symmetry is True and _panels_in_plane(vertices, faces, axis=1):
+        raise ValueError(
+            f"{name}: symmetry=True but panels lie in the port/starboard symmetry plane y = 0"
+        )
+    if symmetry is False or not sym_y or _panels_in_plane(vertices, faces, axis=1):
         sym = SYMMETRY_NONE
+    elif is_mirror_symmetric(vertices, faces, axis=0) and not _panels_in_plane(
+        vertices, faces, axis=0
+    ):
+        sym = SYMMETRY_XY
     else:
-        sym = SYMMETRY_XY if is_mirror_symmetric(vertices, faces, axis=0) else SYMMETRY_Y
+        sym = SYMMETRY_Y
     if np.isfinite(volume) and abs(mass - rho * volume) > 0.01 * rho * volume:
         warnings.warn(
             f"{name}: mass {mass:.6g} kg differs from the displaced mass rho*V = "
@@ -496,10 +972,20 @@ def compute_database(
 
     vertices_c = frames.points_to_capytaine(vertices)
     cog_c = frames.points_to_capytaine(cog)
-    body, plain_body, n_lid = _capytaine_body(
-        vertices_c, faces, name=name, symmetry=sym, lid=lid, lid_z=-d_lid, cog_c=cog_c, mass=mass
-    )
-    w_irr = float(body.first_irregular_frequency_estimate(g=g))
+    try:
+        body, plain_body, n_lid, lid_source = _capytaine_body(
+            vertices_c,
+            faces,
+            name=name,
+            symmetry=sym,
+            lid=lid,
+            lid_z=-d_lid,
+            cog_c=cog_c,
+            mass=mass,
+        )
+        w_irr = float(body.first_irregular_frequency_estimate(g=g))
+    except Exception as exc:
+        raise BEMError(name, None, _bem_hint(exc, None), exc) from exc
     if w_irr < finite_omega.max():
         warnings.warn(
             f"{name}: irregular frequencies may appear above {w_irr:.4g} rad/s (< omega max "
@@ -513,24 +999,37 @@ def compute_database(
     )
     beta_c = np.asarray(frames.wave_direction_to_capytaine(betas), dtype=float)
     t_start = time.perf_counter()
-    results, timings = _solve(
-        body, all_omega, beta_c, rho=rho, g=g, n_jobs=int(n_jobs), progress=progress, name=name
+    keys = [
+        _checkpoint_key(
+            vertices,
+            faces,
+            rho=rho,
+            g=g,
+            mass_matrix=m6,
+            omega=float(w),
+            wave_directions=betas,
+            lid=lid,
+            lid_z=d_lid,
+            symmetry=sym,
+            capytaine_version=str(cpt.__version__),
+            lid_source=lid_source,
+        )
+        for w in all_omega
+    ]
+    solved, timings, n_reused = _solve_all_frequencies(
+        body,
+        all_omega,
+        beta_c,
+        rho=rho,
+        g=g,
+        n_jobs=int(n_jobs),
+        progress=progress,
+        name=name,
+        keys=keys,
+        checkpoint_dir=checkpoint_dir,
     )
     elapsed = time.perf_counter() - t_start
-
-    ds_c = cpt.assemble_dataset(
-        results, freq=False, wavelength=False, mesh=False, hydrostatics=False
-    )
-    keep = ["added_mass", "radiation_damping", "diffraction_force", "Froude_Krylov_force",
-            "excitation_force"]  # fmt: skip
-    ds_c = ds_c[keep]
-    ds_c = ds_c.drop_vars([c for c in ds_c.coords if c not in ds_c.dims and c not in
-                           ("period", "wavenumber")])  # fmt: skip
-    ds_c = ds_c.assign_coords(
-        influenced_dof=np.asarray(ds_c["influenced_dof"].values, dtype=str),
-        radiating_dof=np.asarray(ds_c["radiating_dof"].values, dtype=str),
-    )
-    ds_c = ds_c.reindex(influenced_dof=list(DOF_NAMES), radiating_dof=list(DOF_NAMES))
+    ds_c = _assemble(solved, all_omega, np.sort(beta_c), g=g)
 
     if hydrostatic_stiffness is None:
         c_c = plain_body.compute_hydrostatic_stiffness(rho=rho, g=g)
@@ -583,6 +1082,8 @@ def compute_database(
         "created_by": "ship_gym.hydro.bem.compute_database",
         "bem_seconds_total": float(elapsed),
         "bem_seconds_per_frequency": np.asarray(timings, dtype=float),
+        "lid_source": lid_source,
+        "checkpoint_frequencies_reused": int(n_reused),
     }
     return ds
 
@@ -615,6 +1116,7 @@ def compute_hull_database(
     omega_max: float | None = None,
     wave_directions: Sequence[float] | np.ndarray | None = None,
     hydrostatic_stiffness: np.ndarray | None = None,
+    checkpoint: str | os.PathLike[str] | None = None,
     **kwargs: Any,
 ) -> xr.Dataset:
     """:func:`compute_database` for a :class:`ship_gym.hull.Hull` (duck-typed).
@@ -637,6 +1139,9 @@ def compute_hull_database(
         by port/starboard symmetry, see :func:`ship_gym.hydro.database.mirror_headings`).
     hydrostatic_stiffness : numpy.ndarray, optional
         6×6 stiffness about O [SI]; default computed by capytaine from the mesh and mass.
+    checkpoint : str or os.PathLike, optional
+        Directory keeping every solved frequency, reused by a rerun (see
+        :func:`compute_database`).
     **kwargs
         Passed to :func:`compute_database` (``lid``, ``symmetry``, ``n_jobs``, ``progress``…).
     """
@@ -664,5 +1169,6 @@ def compute_hull_database(
         g=g,
         mass_matrix=m6,
         hydrostatic_stiffness=hydrostatic_stiffness,
+        checkpoint=checkpoint,
         **kwargs,
     )

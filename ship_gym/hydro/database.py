@@ -331,8 +331,8 @@ def open_database(
         time-domain model would miss; ``"none"``: no check.
     **checks
         Tolerances passed to :func:`~ship_gym.hydro.checks.validate_database`
-        (``rtol_symmetry``, ``damping_tolerance``, ``min_frequencies``, ``min_omega_ratio``,
-        ``require_infinite``).
+        (``rtol_symmetry``, ``rtol_symmetry_damping``, ``damping_tolerance``,
+        ``min_frequencies``, ``min_omega_ratio``, ``require_infinite``).
 
     Returns
     -------
@@ -354,6 +354,7 @@ def open_database(
         raise ValueError(f"validate must be 'auto', 'full', 'data' or 'none', got {validate!r}")
     unknown = set(checks) - {
         "rtol_symmetry",
+        "rtol_symmetry_damping",
         "damping_tolerance",
         "min_frequencies",
         "min_omega_ratio",

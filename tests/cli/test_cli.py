@@ -13,6 +13,7 @@ from ship_gym.cli import build_parser, main
 
 # command group module -> the commands the user types
 GROUPS = {
+    "ship": ("ship",),
     "hull": ("hull",),
     "hydro": ("hydro", "kernels"),
     "simulate": ("simulate",),

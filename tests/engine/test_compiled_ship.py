@@ -211,14 +211,12 @@ def test_diffraction_above_range_raise_runs_on_the_numpy_path():
     # above_range="raise" cannot raise inside numba: the engine leaves such a model to its
     # numpy path, where the model raises with its message and the state stays as it was
     from ship_gym.engine.batch import BatchSimulator, batch_force_models
-    from ship_gym.engine.ship import build_force_models
+    from ship_gym.engine.ship import build_force_models, database_of, ship_of
     from ship_gym.forces.diffraction import Diffraction
-    from ship_gym.hull import load_hull
-    from ship_gym.hydro import load_database
 
     setup = ShipSetup(integrator="holloway", speed=12.0)
     field = _field(beta=np.pi)  # head seas at 12 m/s: encounter frequencies beyond the table
-    hull, database = load_hull(setup.hull), load_database(setup.database)
+    hull, database = ship_of(setup).hull, database_of(setup)
     built = build_force_models(setup, hull, database, field, None, np.pi)
     models = [
         Diffraction(database, field, above_range="raise") if isinstance(m, Diffraction) else m

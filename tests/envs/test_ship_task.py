@@ -276,10 +276,11 @@ def test_arguments_table_takes_the_defaults_from_the_signature():
     with pytest.raises(ValueError, match="rudder_weight"):
         arguments_table(CourseKeepingTask, own)  # an undocumented keyword argument
     table = arguments_table(CourseKeepingTask, {**own, "rudder_weight": ("-", "weight")})
-    assert table.splitlines()[2] == (
+    assert table.splitlines()[2].startswith('| ship | "s175" | - | bundled ship name or ship file')
+    assert (
         "| froude_number | 0.25 | - | reference speed U = Fn √(g L) (radiation, diffraction, "
         "propeller) |"
-    )
+    ) in table
     assert "| hs_range_m | (3, 5) | m | significant wave height range |" in table
     assert '| rudder_mode | "absolute" | - | mode |' in table
     assert "| hull_mesh | (60, 12, 6, 4) | - |" in table

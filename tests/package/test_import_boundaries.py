@@ -1,6 +1,7 @@
 """Data flows one way (DESIGN.md §2): no module imports a stage to its right, and no cycle.
 
-Stages: foundations → hull → hydro → waves → forces → control → engine (with the 1-DOF roll model
+Stages: foundations → hull → hydro → waves → forces → control and ship (a ship's hull, appendages
+and database) → engine (with the 1-DOF roll model
 and the comfort metrics beside it) → envs → analysis → agents → cli.
 
 * Statically (the source's ``import`` statements, also those inside functions and under
@@ -35,6 +36,7 @@ STAGES = {
     "waves": 4,
     "forces": 5,
     "control": 6,
+    "ship": 6,
     "engine": 7,
     "roll": 7,
     "comfort": 7,

@@ -1,5 +1,7 @@
-"""The S175 ship tasks: mesh presets, the :class:`~ship_gym.engine.ship.ShipSetup` of the S175 and
-:class:`S175Task`, the ship task built from the keyword arguments every ship environment shares.
+"""The ship tasks' set-up: S175 mesh presets, the :class:`~ship_gym.engine.ship.ShipSetup` of a
+task (:func:`task_setup`, any ship: the S175 by default, a bundled ship or a ship file) and
+:class:`ShipEnvTask`, the ship task built from the keyword arguments every ship environment
+shares.
 """
 
 from __future__ import annotations
@@ -46,18 +48,55 @@ MIN_GM_M = 0.05
 upright ship must be stable (positive restoring, a roll natural frequency)."""
 
 
-def _metacentre_height(mesh_overrides: tuple[tuple[str, Any], ...]) -> float:
-    """KM = KG + GM [m] of the upright S175 at its design loading on a mesh (independent of KG:
+def _metacentre_height(ship: str, mesh_overrides: tuple[tuple[str, Any], ...]) -> float:
+    """KM = KG + GM [m] of the upright ship at its design loading on a mesh (independent of KG:
     KB + BM), from the cached loading condition."""
     from ship_gym.engine.ship import ShipSetup
     from ship_gym.envs.loading import loading_condition
 
-    lc = loading_condition(ShipSetup(hull="s175", hull_overrides=dict(mesh_overrides)))
+    lc = loading_condition(ShipSetup(hull=ship, hull_overrides=dict(mesh_overrides)))
     return lc.kg + lc.gm
 
 
-def s175_setup(
+def check_ship(value: Any) -> str:
+    """The ``ship`` argument of an environment: a bundled ship name or a ship-file path,
+    checked (and the ship loaded, so that a bad file fails here, naming ``ship``)."""
+    import os
+
+    from ship_gym.ship import load_ship
+
+    if not isinstance(value, str | os.PathLike) or not os.fspath(value):
+        raise ValueError(
+            f"ship must be a bundled ship name (e.g. 's175') or a ship file path (.toml), "
+            f"got {value!r}"
+        )
+    text = os.fspath(value)
+    try:
+        load_ship(text)
+    except (ValueError, FileNotFoundError) as exc:
+        raise type(exc)(f"ship = {text!r}: {exc}") from None
+    return text
+
+
+def ship_particulars(ship: str) -> Any:
+    """Main particulars (:class:`ship_gym.hull.hull.Particulars`) of an environment's ``ship``
+    (checked by :func:`check_ship`), for the defaults that scale with the ship."""
+    from ship_gym.ship import load_ship
+
+    return load_ship(check_ship(ship)).hull.particulars
+
+
+def point_scaled_from_s175(ship: str, point: Sequence[float]) -> tuple[float, float, float]:
+    """A body-frame point [m] chosen on the S175, moved to ``ship`` in proportion to its
+    length, beam and draught (x/175 · L, y/25.4 · B, z/9.5 · T): the default passenger points."""
+    p = ship_particulars(ship)
+    x, y, z = (float(v) for v in point)
+    return (x / 175.0 * p.lpp, y / 25.4 * p.beam, z / 9.5 * p.draught)
+
+
+def task_setup(
     *,
+    ship: str = "s175",
     froude_number: float,
     physics_dt: float,
     integrator: IntegratorName,
@@ -66,12 +105,14 @@ def s175_setup(
     kg: float | None,
     precision: Precision = "float32",
 ) -> ShipSetup:
-    """The S175 setup of the ship tasks: state-space radiation memory, diffraction, Ikeda roll
+    """The setup of the ship tasks: state-space radiation memory, diffraction, Ikeda roll
     damping, propulsion (Holtrop resistance + B-series propeller), manoeuvring forces and a
     rudder behind its servo (commanded, or under the heading autopilot).
 
     Parameters
     ----------
+    ship : str
+        Bundled ship name or ship file (:func:`ship_gym.ship.load_ship`); default the S175.
     froude_number : float
         Reference Froude number Fn = U/√(g Lpp) [-] (0.05 … 0.5).
     physics_dt : float
@@ -81,14 +122,18 @@ def s175_setup(
     rudder : {"command", "autopilot"}
         Rudder following ``"rudder_command"`` or the PID heading autopilot (``"heading"``).
     hull_mesh : sequence of 4 int
-        S175 mesh (n_sections, n_below, n_above, n_deck); :data:`S175_MESH` is the default.
+        Mesh (n_sections, n_below, n_above, n_deck) of a hull built from offsets (the S175 and
+        ``[hull] offsets`` ships); :data:`S175_MESH` is the default (the file's own mesh).
     kg : float or None
-        KG of the loading [m] (None: 9.55 m, the ITTC condition, GM ≈ 1.0 m).
+        KG of the loading [m] (None: the ship's; the S175's 9.55 m, GM ≈ 1.0 m).
     precision : {"float32", "float64"}
         Wave sums of the Froude–Krylov kernel (``fk_method`` "fast32" or "fast").
     """
     from ship_gym.engine.ship import ShipSetup
+    from ship_gym.ship import load_ship
 
+    ship = check_ship(ship)
+    described = load_ship(ship)
     froude_number = check_real("froude_number", froude_number, low=0.05, high=0.5, unit="-")
     physics_dt = check_real("physics_dt_s", physics_dt, low=0.01, high=0.5, unit="s")
     if integrator not in ("holloway", "rk4"):
@@ -104,6 +149,14 @@ def s175_setup(
             f"got {hull_mesh!r}"
         )
     overrides: dict[str, Any] = {}
+    geometry = described.description.hull
+    meshed_from_offsets = geometry.library == "s175" or geometry.kind == "offsets"
+    if mesh != S175_MESH and not meshed_from_offsets:
+        raise ValueError(
+            f"hull_mesh = {hull_mesh!r} applies to hulls built from offsets (the S175, "
+            f"[hull] offsets ships); ship {ship!r} has a {geometry.kind} hull: leave hull_mesh "
+            "at its default"
+        )
     if mesh != S175_MESH:  # the library hull's own mesh
         overrides.update(
             n_sections=int(mesh[0]),
@@ -112,20 +165,23 @@ def s175_setup(
             n_deck=int(mesh[3]),
         )
     if kg is not None:
-        kg = check_real("kg_m", kg, low=5.0, high=12.0, unit="m", why=" (S175 depth 15.4 m)")
-        km = _metacentre_height(tuple(sorted(overrides.items())))
+        depth = described.hull.particulars.depth
+        kg = check_real(
+            "kg_m", kg, low=0.0, high=depth, unit="m", why=f" (ship {ship!r}: depth {depth:g} m)"
+        )
+        km = _metacentre_height(ship, tuple(sorted(overrides.items())))
         if kg > km - MIN_GM_M:
             raise ValueError(
-                f"kg_m = {kg!r} m leaves GM = KM - KG = {km - kg:.3f} m: the upright S175 "
+                f"kg_m = {kg!r} m leaves GM = KM - KG = {km - kg:.3f} m: the upright ship "
                 f"needs GM >= {MIN_GM_M} m, i.e. kg_m <= {km - MIN_GM_M:.3f} m (KM = {km:.3f} m "
                 f"on this hull_mesh)"
             )
         overrides["kg"] = float(kg)
-    speed = float(froude_number) * math.sqrt(GRAVITY * 175.0)
+    speed = float(froude_number) * math.sqrt(GRAVITY * described.hull.particulars.lpp)
     return ShipSetup(
-        hull="s175",
+        hull=ship,
         hull_overrides=overrides,
-        database="s175",
+        database="auto",
         speed=speed,
         radiation="state_space",
         diffraction=True,
@@ -143,6 +199,7 @@ def s175_setup(
 # the S175 task built from the environments' shared keyword arguments
 # =============================================================================================
 SHIP_KWARGS: tuple[str, ...] = (
+    "ship",
     "froude_number",
     "speed_range_mps",
     "gm_range_m",
@@ -159,14 +216,15 @@ SHIP_KWARGS: tuple[str, ...] = (
     "sensor_noise",
     "wave_preview_m",
 )
-"""The environment keyword arguments :class:`S175Task` takes as they are (:func:`ship_kwargs`)."""
+"""The environment keyword arguments :class:`ShipEnvTask` takes as they are
+(:func:`ship_kwargs`)."""
 
 
 def ship_kwargs(values: Mapping[str, Any]) -> dict[str, Any]:
     """The :data:`SHIP_KWARGS` among an environment task's arguments (its ``locals()``).
 
     Every ship environment task declares its keyword arguments explicitly (typed, with units,
-    with its own defaults) and forwards the shared ones to :class:`S175Task` by name with this.
+    with its own defaults) and forwards the shared ones to :class:`ShipEnvTask` by name with this.
     """
     return {key: values[key] for key in SHIP_KWARGS if key in values}
 
@@ -195,8 +253,8 @@ def irregular_sea(values: Mapping[str, Any]) -> SeaSampler:
     )
 
 
-class S175Task(ShipTask, abc.ABC):
-    """A :class:`ShipTask` of the S175 (:func:`s175_setup`) from the shared environment
+class ShipEnvTask(ShipTask, abc.ABC):
+    """A :class:`ShipTask` of a ship (:func:`task_setup`) from the shared environment
     keyword arguments (:data:`SHIP_ARGUMENTS` for their meaning and units).
 
     Parameters
@@ -207,8 +265,8 @@ class S175Task(ShipTask, abc.ABC):
         Rudder following ``"rudder_command"`` or the PID heading autopilot.
     sea : SeaSampler
         Per-episode sea.
-    froude_number, physics_dt_s, integrator, hull_mesh, kg_m, precision
-        :func:`s175_setup` arguments (Fn [-], dt [s], scheme, mesh, KG [m], wave sums).
+    ship, froude_number, physics_dt_s, integrator, hull_mesh, kg_m, precision
+        :func:`task_setup` arguments (ship, Fn [-], dt [s], scheme, mesh, KG [m], wave sums).
     num_threads : int
         numba threads over the ships in the compiled loop (1: serial).
     control_dt_s : float
@@ -220,7 +278,7 @@ class S175Task(ShipTask, abc.ABC):
     capsize_angle_deg, dangerous_roll_deg, capsize_penalty, sensor_noise, wave_preview_m
         :class:`ShipTask` arguments.
     setup_changes : mapping, optional
-        :class:`ship_gym.engine.ship.ShipSetup` fields replaced after :func:`s175_setup`
+        :class:`ship_gym.engine.ship.ShipSetup` fields replaced after :func:`task_setup`
         (e.g. ``{"fins": "command"}``).
     extra_observations : sequence of (name, low, high)
         The subclass's observation entries.
@@ -249,8 +307,10 @@ class S175Task(ShipTask, abc.ABC):
         gm_range_m: tuple[float, float] | None = None,
         setup_changes: Mapping[str, Any] | None = None,
         extra_observations: Sequence[tuple[str, float, float]] = (),
+        ship: str = "s175",
     ) -> None:
-        setup = s175_setup(
+        setup = task_setup(
+            ship=ship,
             froude_number=froude_number,
             physics_dt=physics_dt_s,
             integrator=integrator,
