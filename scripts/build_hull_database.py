@@ -2,9 +2,9 @@
 
 The file is ``ship_gym/data/<hull>/<hull>_hydro.nc``.
 
-The generalisation of ``scripts/build_s175_database.py`` to any hull of
-:data:`ship_gym.hull.library.HULLS` (that script keeps building the S175 file unchanged). Same
-default grid as the S175 database: 40 finite frequencies up to the highest frequency the default
+For any hull of :data:`ship_gym.hull.library.HULLS` (``s175`` rebuilds the S175 file, whose
+attributes still name its former script ``build_s175_database.py``). The grid of the bundled
+databases: 40 finite frequencies up to the highest frequency the default
 mesh resolves, plus ω = 0 and ω = ∞, and headings 0°–180° every 15° (the rest of the circle
 follows from port/starboard symmetry, :func:`ship_gym.hydro.mirror_headings`). Provenance goes
 into the file's attributes (capytaine version, mesh, grid, loading condition, build time, this

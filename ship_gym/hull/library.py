@@ -64,22 +64,40 @@ def s175(
     rho, g : float
         Water density [kg/m³] and gravity [m/s²].
     """
-    draught, depth = 9.5, 15.4
-    mesh = hull_mesh_from_stations(
+    return _offsets_hull(
+        "s175",
         read_offsets_csv(),
-        draught=draught,
-        depth=depth,
-        n_sections=n_sections,
-        n_below=n_below,
-        n_above=n_above,
-        n_deck=n_deck,
-        name="s175",
+        Particulars(175.0, 25.4, 9.5, 15.4, dict(S175_REFERENCE)),
+        dict(n_sections=n_sections, n_below=n_below, n_above=n_above, n_deck=n_deck),
+        (displacement_t, kg, lcg, radii_of_gyration),
+        rho,
+        g,
+    )
+
+
+def _offsets_hull(
+    name: str,
+    stations: list[Station],
+    particulars: Particulars,
+    resolution: dict[str, int],
+    loading: tuple[float, float, float, tuple[float, float, float]],
+    rho: float,
+    g: float,
+) -> Hull:
+    """A hull meshed from offsets to its deck, with a loading (displacement [t], KG [m], LCG [m],
+    radii of gyration [m])."""
+    displacement_t, kg, lcg, radii = loading
+    mesh = hull_mesh_from_stations(
+        stations,
+        draught=particulars.draught,
+        depth=particulars.depth,
+        name=name,
+        **resolution,
     )
     mass = MassProperties.from_radii_of_gyration(
-        displacement_t * 1e3, np.array([lcg, 0.0, draught - kg]), radii_of_gyration
+        displacement_t * 1e3, np.array([lcg, 0.0, particulars.draught - kg]), radii
     )
-    particulars = Particulars(175.0, 25.4, draught, depth, dict(S175_REFERENCE))
-    return Hull("s175", mesh, mass, particulars, rho, g)
+    return Hull(name, mesh, mass, particulars, rho, g)
 
 
 DTMB5415_REFERENCE = {
@@ -144,24 +162,16 @@ def dtmb5415(
     rho, g : float
         Water density [kg/m³] and gravity [m/s²].
     """
-    draught = 6.15
     path = resources.files("ship_gym.data").joinpath("dtmb5415/offsets.csv")
-    mesh = hull_mesh_from_stations(
+    return _offsets_hull(
+        "dtmb5415",
         read_offsets_csv(str(path)),
-        draught=draught,
-        depth=depth,
-        n_sections=n_sections,
-        n_below=n_below,
-        n_above=n_above,
-        n_deck=n_deck,
-        n_end=n_end,
-        name="dtmb5415",
+        Particulars(142.0, 19.06, 6.15, depth, dict(DTMB5415_REFERENCE)),
+        dict(n_sections=n_sections, n_below=n_below, n_above=n_above, n_deck=n_deck, n_end=n_end),
+        (displacement_t, kg, lcg, radii_of_gyration),
+        rho,
+        g,
     )
-    mass = MassProperties.from_radii_of_gyration(
-        displacement_t * 1e3, np.array([lcg, 0.0, draught - kg]), radii_of_gyration
-    )
-    particulars = Particulars(142.0, 19.06, draught, depth, dict(DTMB5415_REFERENCE))
-    return Hull("dtmb5415", mesh, mass, particulars, rho, g)
 
 
 def box_mesh(
