@@ -158,15 +158,16 @@ def add_ship_argument(parser: argparse.ArgumentParser, *, positional: bool = Fal
     """Add the ship argument: ``--ship SHIP`` (alias ``--hull``, default the S175) or, with
     ``positional``, a required ``ship`` argument; either way stored as ``args.hull``."""
     help = (
-        "ship: a bundled ship or library hull (s175, box_barge, hemisphere, wigley, …) or a "
-        "ship file (.toml; see `ship-gym ship check`)"
+        "ship: a bundled ship or library hull (s175, dtmb5415, box_barge, hemisphere, wigley) "
+        "or a ship file (.toml; see `ship-gym ship check`)"
     )
     if positional:
         parser.add_argument("hull", metavar="SHIP", type=ship_name, help=help)
     else:
         parser.add_argument(
-            "--ship", "--hull", dest="hull", default="s175", type=ship_name, help=help
-        )
+            "--ship", "--hull", dest="hull", default="s175", type=ship_name, metavar="SHIP",
+            help=help,
+        )  # fmt: skip
 
 
 def override_item(text: str) -> str:

@@ -361,7 +361,10 @@ def _control_models(
         out.append(HullManoeuvring.from_hull(hull))
     a_lhs = sum((m.added_mass for m in wave_models if m.added_mass is not None), np.zeros((6, 6)))
     mass = hull.mass.rigid_body_matrix() + a_lhs
-    c = database["hydrostatic_stiffness"].values
+    # the loading's own restoring (the hull at its free-floating equilibrium), not the
+    # database's: a cached database carries the stiffness of whichever loading built it
+    eq = equilibrium(hull)
+    c = hydrostatics(hull, heave=eq.heave, trim=eq.trim).stiffness
     if setup.rudder != "none":
         rudder = ship.rudder()
         controller: Controller | None = None
