@@ -7,6 +7,7 @@ One module per command group, named after the commands the user types:
 * :mod:`~ship_gym.cli.simulate` — ``simulate``;
 * :mod:`~ship_gym.cli.manoeuvre` — ``manoeuvre``;
 * :mod:`~ship_gym.cli.capsize` — ``capsize-map``, ``parametric-roll``, ``dead-ship``;
+* :mod:`~ship_gym.cli.campaign` — ``campaign`` (``run``, ``report``);
 * :mod:`~ship_gym.cli.safe_basin` — ``safe-basin``;
 * :mod:`~ship_gym.cli.identify` — ``identify``;
 * :mod:`~ship_gym.cli.agents` — ``train``, ``evaluate``;
@@ -34,6 +35,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``ship-gym`` (one subparser per subcommand)."""
     from ship_gym.cli import (
         agents,
+        campaign,
         capsize,
         hull,
         hydro,
@@ -49,7 +51,18 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--debug", action="store_true", help="show the full traceback of an error")
     sub = parser.add_subparsers(dest="command", required=True)
-    for module in (ship, hull, hydro, simulate, manoeuvre, capsize, safe_basin, identify, agents):
+    for module in (
+        ship,
+        hull,
+        hydro,
+        simulate,
+        manoeuvre,
+        capsize,
+        campaign,
+        safe_basin,
+        identify,
+        agents,
+    ):
         module.add_commands(sub)
     for command in sub.choices.values():  # also ``ship-gym CMD … --debug``
         command.add_argument(

@@ -28,6 +28,7 @@ EXPENSIVE = [
     ("ship_gym.engine.ship", "build_simulator"),
     ("ship_gym.analysis.manoeuvres", "trial_setup"),
     ("ship_gym.analysis.capsize_map", "run_capsize_map"),
+    ("ship_gym.analysis.campaign", "run_campaign"),
     ("ship_gym.analysis.intact_stability", "parametric_roll_check"),
     ("ship_gym.analysis.intact_stability", "dead_ship"),
     ("ship_gym.analysis.safe_basin", "safe_basin"),
@@ -69,6 +70,25 @@ def paths(tmp_path):
     bad_toml.write_text("[[\n")
     bad_env = tmp_path / "bad_env.toml"
     bad_env.write_text('[env]\nid = "ship_gym/Bogus-v0"\n')
+    campaign = (
+        'ships = ["s175"]\nheadings_deg = [90]\nfroude_numbers = [0.2]\nseeds = 2\n'
+        "duration_s = 20.0\ndt_s = 0.2\ncapsize_angle_deg = 30.0\n"
+    )
+    good_campaign = tmp_path / "campaign.toml"
+    good_campaign.write_text(
+        campaign + '[[seas]]\nkind = "regular"\nheight_m = 2.0\nwavelength_m = 100.0\n'
+    )
+    bad_sea = tmp_path / "bad_sea.toml"
+    bad_sea.write_text(campaign + '[[seas]]\nkind = "jonswap"\ntp_s = 12.0\n')
+    spread = tmp_path / "spread.toml"
+    spread.write_text(
+        campaign + '[[seas]]\nkind = "jonswap"\nhs_m = 4.0\ntp_s = 12.0\nspreading_s = 10\n'
+    )
+    bad_ship = tmp_path / "bad_ship.toml"
+    bad_ship.write_text(
+        campaign.replace('"s175"', '"nosuchship"') + "[[seas]]\n"
+        'kind = "regular"\nheight_m = 2.0\nwavelength_m = 100.0\n'
+    )
     return {
         "{tmp}": str(tmp_path),
         "{dir}": str(tmp_path),
@@ -76,6 +96,10 @@ def paths(tmp_path):
         "{csv}": str(csv),
         "{bad_toml}": str(bad_toml),
         "{bad_env}": str(bad_env),
+        "{campaign}": str(good_campaign),
+        "{bad_sea}": str(bad_sea),
+        "{spread}": str(spread),
+        "{bad_ship}": str(bad_ship),
     }
 
 
@@ -235,6 +259,26 @@ CASES: list[tuple[str, int, list[str]]] = [
     ("capsize-map --results {file}/r.jsonl", R, ["--results", "is a file"]),
     ("capsize-map --results {tmp}/r.jsonl --plot {tmp}/p.txt", R, ["--plot", "suffix"]),
     ("capsize-map --results {tmp}/r.jsonl --json /proc/c.json", R, ["--json", "cannot"]),
+    # campaign
+    ("campaign", U, ["required", "action"]),
+    ("campaign run", U, ["FILE.toml", "required"]),
+    ("campaign run {tmp}/none.toml", R, ["FILE.toml", "none.toml", "not found"]),
+    ("campaign run {bad_toml}", R, ["bad.toml", "not a valid TOML"]),
+    ("campaign run {bad_sea}", R, ["bad_sea.toml", "[[seas]] #1 hs_m", "missing"]),
+    ("campaign run {spread}", R, ["[[seas]] #1 spreading_s", "not supported"]),
+    ("campaign run {bad_ship}", R, ["ships", "nosuchship"]),
+    ("campaign run {campaign} --workers 0", U, ["--workers", ">= 1"]),
+    ("campaign run {campaign} --workers 2", R, ["--workers 2", "serial"]),
+    ("campaign run {campaign} --executor bogus", U, ["--executor", "invalid choice"]),
+    ("campaign run {campaign} --address x:1", R, ["--address", "--executor ray"]),
+    ("campaign run {campaign} --store {file}", R, ["--store", "is a file"]),
+    ("campaign report", U, ["FILE.toml|STORE", "required"]),
+    ("campaign report {campaign}", R, ["no store", "campaign run"]),
+    ("campaign report {campaign} --half-width 0", U, ["--half-width", "(0, 0.5]"]),
+    ("campaign report {campaign} --half-width 0.7", U, ["--half-width", "(0, 0.5]"]),
+    ("campaign report {campaign} --plot {tmp}/p.txt", R, ["--plot", "suffix"]),
+    ("campaign report {campaign} --method wald", U, ["--method", "invalid choice"]),
+    ("campaign report {dir} --store {dir}", R, ["--store", "not a store folder"]),
     # parametric-roll
     ("parametric-roll --steepness 0.5", U, ["--steepness", "(0, 0.142857]"]),
     ("parametric-roll --steepness 0", U, ["--steepness", "(0, 0.142857]"]),

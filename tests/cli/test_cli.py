@@ -19,6 +19,7 @@ GROUPS = {
     "simulate": ("simulate",),
     "manoeuvre": ("manoeuvre",),
     "capsize": ("capsize-map", "parametric-roll", "dead-ship"),
+    "campaign": ("campaign",),
     "safe_basin": ("safe-basin",),
     "identify": ("identify",),
     "agents": ("train", "evaluate"),

@@ -1,0 +1,277 @@
+"""Capsize campaigns (issue #17): TOML spec, stable cell ids, serial == 2 workers == resumed,
+extension runs only new cells, the Parquet store, the statistics and the CLI."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pyarrow")
+
+from ship_gym.analysis import campaign as cp
+from ship_gym.analysis import campaign_store as st
+from ship_gym.analysis import capsize_statistics as cs
+
+# S175 at its default mesh: ~3 s to build, ~0.2 s per batch of 2 ships over 20 s at dt 0.2.
+# A 1° capsize angle in beam seas makes some seeds capsize (time to capsize tested too).
+TINY = """
+name = "tiny"
+ships = ["s175"]
+headings_deg = {headings}
+froude_numbers = [0.2]
+seeds = {seeds}
+duration_s = 20.0
+dt_s = 0.2
+capsize_angle_deg = 1.0
+batch_seeds = 2
+
+[[seas]]
+kind = "regular"
+height_m = 2.0
+wavelength_m = 100.0
+ramp_s = 10.0
+"""
+
+
+def _write(tmp_path: Path, name: str = "c.toml", headings="[90, 60]", seeds=2, extra="") -> Path:
+    path = tmp_path / name
+    path.write_text(TINY.format(headings=headings, seeds=seeds) + extra)
+    return path
+
+
+def _outputs(records: list[dict]) -> list[tuple]:
+    return sorted(tuple(r[c] for c in st.OUTPUT_COLUMNS) for r in records)
+
+
+@pytest.fixture(scope="module")
+def serial(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("serial")
+    spec = cp.read_campaign(_write(tmp))
+    return spec, cp.run_campaign(spec, tmp / "store", progress=False)
+
+
+def test_serial_run_fills_the_store(serial):
+    spec, res = serial
+    assert res.n_cells == res.n_run == 4 and res.n_tasks == 2
+    assert len(list(res.store.glob("part-*.parquet"))) == 2
+    assert [r["cell_id"] for r in res.records] == [c.cell_id for c in cp.cells(spec)]
+    rec = res.records[0]
+    assert set(rec) == {name for name, _ in st.COLUMNS}
+    assert rec["ship"] == "s175" and rec["ship_digest"].startswith("sha256:")
+    assert rec["engine"] == "compiled" and rec["batch_size"] == 2 and rec["cpu_s"] > 0
+    capsized = [r for r in res.records if r["capsized"]]
+    assert capsized, "the 1° criterion should capsize some seed in beam seas"
+    for r in capsized:
+        assert 0.0 < r["time_to_capsize_s"] < 20.0 and r["reason"] == "roll"
+    for r in res.records:
+        if not r["capsized"]:
+            assert r["time_to_capsize_s"] is None
+
+
+def test_two_workers_and_resume_and_extension_are_bit_identical(serial, tmp_path):
+    _, ref = serial
+    # 2 local worker processes
+    spec = cp.read_campaign(_write(tmp_path))
+    par = cp.run_campaign(spec, tmp_path / "par", executor="processes", workers=2, progress=False)
+    assert par.n_run == 4
+    assert _outputs(par.records) == _outputs(ref.records)
+    # a smaller campaign first (one heading, one seed), then the full one: only new cells run
+    small = cp.read_campaign(_write(tmp_path, "small.toml", headings="[90]", seeds=1))
+    store = tmp_path / "resumed"
+    first = cp.run_campaign(small, store, progress=False)
+    assert first.n_run == 1
+    full = cp.run_campaign(spec, store, progress=False)
+    assert full.n_run == 3
+    # a kill that lost a task: delete one shard, resume runs exactly its cells
+    shards = sorted(store.glob("part-*.parquet"))
+    lost = st.read_store(store)
+    victim = shards[-1]
+    import pyarrow.parquet as pq
+
+    n_lost = pq.read_table(victim).num_rows
+    victim.unlink()
+    again = cp.run_campaign(spec, store, progress=False)
+    assert again.n_run == n_lost
+    assert _outputs(again.records) == _outputs(ref.records) == _outputs(lost)
+    assert cp.run_campaign(spec, store, progress=False).n_run == 0
+
+
+def test_ray_with_two_local_workers_is_bit_identical(serial, tmp_path):
+    """The same campaign as Ray tasks on a local 2-CPU cluster (started and shut down by the
+    executor) gives the serial results bit for bit."""
+    pytest.importorskip("ray")
+    _, ref = serial
+    spec = cp.read_campaign(_write(tmp_path))
+    res = cp.run_campaign(spec, tmp_path / "ray", executor="ray", workers=2, progress=False)
+    assert res.n_run == 4
+    assert _outputs(res.records) == _outputs(ref.records)
+
+
+def test_cell_ids_stable_and_independent_of_list_order(tmp_path):
+    a = cp.cells(cp.read_campaign(_write(tmp_path, "a.toml", headings="[90, 60]")))
+    b = cp.cells(cp.read_campaign(_write(tmp_path, "b.toml", headings="[60.0, 90]")))
+    assert {c.cell_id for c in a} == {c.cell_id for c in b}
+    assert len({c.cell_id for c in a}) == 4
+    # the same cell in a bigger campaign keeps its id; any run setting changes it
+    big = cp.cells(cp.read_campaign(_write(tmp_path, "big.toml", headings="[0, 60, 90]", seeds=3)))
+    assert {c.cell_id for c in a} < {c.cell_id for c in big}
+    import dataclasses
+
+    other = dataclasses.replace(cp.read_campaign(_write(tmp_path, "d.toml")), duration_s=40.0)
+    assert not {c.cell_id for c in a} & {c.cell_id for c in cp.cells(other)}
+    # a ship file is identified by its content, not its path
+    from ship_gym.ship import bundled_ship_path
+
+    copy = tmp_path / "sub" / "my_s175.toml"
+    copy.parent.mkdir()
+    copy.write_bytes(bundled_ship_path("s175").read_bytes())
+    text = _write(tmp_path, "f.toml").read_text().replace('["s175"]', '["sub/my_s175.toml"]')
+    (tmp_path / "f.toml").write_text(text)
+    by_file = cp.cells(cp.read_campaign(tmp_path / "f.toml"))
+    assert {c.cell_id for c in by_file} == {c.cell_id for c in a}
+    # pinned: a change of the hash contents must be deliberate (bump CELL_SCHEMA)
+    assert len(a[0].cell_id) == 20 and all(ch in "0123456789abcdef" for ch in a[0].cell_id)
+
+
+@pytest.mark.parametrize(
+    ("extra_or_replace", "message"),
+    [
+        (("seeds = 2", "seeds = 0"), "seeds = 0; expected an integer >= 1"),
+        (("height_m = 2.0", "height_m = -2.0"), "[[seas]] #1 height_m = -2.0"),
+        (("height_m = 2.0", "hs_m = 2.0"), "[[seas]] #1 hs_m: unknown key"),
+        (('kind = "regular"', 'kind = "stokes"'), "[[seas]] #1 kind = 'stokes'"),
+        (("froude_numbers = [0.2]", "froude_numbers = [1.5]"), "froude_numbers = [1.5]"),
+        (("froude_numbers = [0.2]", "speeds_mps = [8.0]\nfroude_numbers = [0.2]"), "exactly one"),
+        (("headings_deg = [90, 60]", "headings_deg = [90, 450]"), "headings_deg"),
+        (("headings_deg = [90, 60]", "headings_deg = [0, 360]"), "appears twice"),
+        (("duration_s = 20.0", "duration_s = 20.1"), "duration_s = 20.1"),
+        (("capsize_angle_deg = 1.0", 'capsize_angle_deg = "big"'), "capsize_angle_deg = 'big'"),
+        (('name = "tiny"', 'controller = "policy.zip"'), "not supported yet"),
+        (('name = "tiny"', "bogus = 1"), "bogus: unknown key"),
+        (('["s175"]', '["nosuchship"]'), "ships: 'nosuchship'"),
+        (('name = "tiny"', "loadings = [{bogus_key = 1}]"), "loadings[0]"),
+    ],
+)
+def test_bad_fields_are_named(tmp_path, extra_or_replace, message):
+    old, new = extra_or_replace
+    path = _write(tmp_path)
+    path.write_text(path.read_text().replace(old, new, 1))
+    with pytest.raises(cp.CampaignError) as err:
+        cp.read_campaign(path)
+    assert message in str(err.value) and str(path) in str(err.value)
+
+
+def test_jonswap_spreading_is_refused_and_speeds_in_mps_run(tmp_path):
+    sea = '\n[[seas]]\nkind = "jonswap"\nhs_m = 3.0\ntp_s = 10.0\nspreading_s = 8\n'
+    path = _write(tmp_path, extra=sea)
+    with pytest.raises(cp.CampaignError, match=r"#2 spreading_s.*not supported"):
+        cp.read_campaign(path)
+    path.write_text(path.read_text().replace("spreading_s = 8\n", ""))
+    spec = cp.read_campaign(path)
+    assert spec.seas[1].kind == "irregular" and spec.seas[1].gamma == 3.3
+    text = path.read_text().replace("froude_numbers = [0.2]", "speeds_mps = [8.0]")
+    text = text.replace("headings_deg = [90, 60]", "headings_deg = [90]").replace(
+        "seeds = 2", "seeds = 1"
+    )
+    path.write_text(text)
+    res = cp.run_campaign(cp.read_campaign(path), tmp_path / "s", progress=False)
+    assert res.n_run == 2
+    assert all(abs(r["speed_mps"] - 8.0) < 1e-9 for r in res.records)
+    assert {r["speed_kind"] for r in res.records} == {"mps"}
+
+
+def test_store_without_pyarrow_names_the_extra(monkeypatch):
+    import builtins
+
+    real = builtins.__import__
+
+    def fake(name, *a, **k):
+        if name.startswith("pyarrow"):
+            raise ImportError("no pyarrow")
+        return real(name, *a, **k)
+
+    monkeypatch.setattr(builtins, "__import__", fake)
+    with pytest.raises(ImportError, match=r"ship_gym\[distributed\]"):
+        st.read_store(".")
+
+
+# ----------------------------------------------------------------------------- statistics
+def test_wilson_interval_against_the_textbook_formula():
+    # Wilson (1927): (p + z²/2n ± z√(p(1-p)/n + z²/4n²)) / (1 + z²/n), z = 1.959964
+    z = 1.959963984540054
+    lo, hi = cs.wilson_interval(0, 10)
+    assert lo == 0.0
+    assert hi == pytest.approx(z * z / (10 + z * z), rel=1e-12)  # = 0.27753…
+    assert hi == pytest.approx(0.2775327, abs=1e-7)
+    lo, hi = cs.wilson_interval(5, 10)
+    half = z * math.sqrt(0.25 / 10 + z * z / 400) / (1 + z * z / 10)
+    assert (lo, hi) == pytest.approx((0.5 - half, 0.5 + half), rel=1e-12)
+    assert (lo, hi) == pytest.approx((0.2365931, 0.7634069), abs=1e-7)
+    with pytest.raises(ValueError, match="k must be"):
+        cs.wilson_interval(11, 10)
+
+
+@pytest.mark.parametrize(("k", "n"), [(0, 10), (1, 10), (5, 10), (10, 10), (3, 37)])
+def test_clopper_pearson_matches_scipy_binomtest(k, n):
+    from scipy.stats import binomtest
+
+    ref = binomtest(k, n).proportion_ci(confidence_level=0.9, method="exact")
+    assert cs.clopper_pearson_interval(k, n, 0.9) == pytest.approx(
+        (ref.low, ref.high), abs=1e-12
+    )  # tolerance: both are beta quantiles; 1e-12 allows for the ppf's rounding
+
+
+def test_seeds_for_half_width():
+    n = cs.seeds_for_half_width(0.5, 0.1)
+    assert cs.wilson_half_width(0.5, n) <= 0.1 < cs.wilson_half_width(0.5, n - 1)
+    assert 90 <= n <= 100  # the Wald approximation z²/4h² = 96
+    assert cs.seeds_for_half_width(0.0, 0.1) < n  # fewer seeds at the edges
+
+
+def test_kaplan_meier_with_censoring():
+    # capsizes at 10, 20; censored at 15 and 30: S = 3/4 after 10, 3/4 · 1/2 after 20
+    curve = cs.kaplan_meier([10.0, 15.0, 20.0, 30.0], [True, False, True, False])
+    assert np.allclose(curve.time, [0.0, 10.0, 20.0])
+    assert np.allclose(curve.survival, [1.0, 0.75, 0.375])
+    assert list(curve.at_risk) == [4, 4, 2]
+    assert curve.median() == 20.0
+    assert math.isnan(cs.kaplan_meier([5.0, 5.0], [False, False]).median())
+
+
+def test_summary_plot_and_cli_report(serial, tmp_path, capsys):
+    from ship_gym.cli import main
+
+    _, res = serial
+    summary = cs.summarise_cells(res.records, half_width=0.2)
+    assert len(summary) == 2 and all(s.n == 2 for s in summary)
+    for s in summary:
+        assert s.lower <= s.p_hat <= s.upper and s.seeds_needed >= 1
+    png = cs.plot_polar_capsize(summary, tmp_path / "map.png", title="tiny")
+    assert png.stat().st_size > 1000
+    out_json = tmp_path / "r.json"
+    status = main(
+        ["campaign", "report", str(res.store), "--plot", str(tmp_path / "p.png"), "--json",
+         str(out_json)]
+    )  # fmt: skip
+    out = capsys.readouterr().out
+    assert status == 0, out
+    assert "4 runs in 2 cells" in out and "95% CI" in out
+    cells = json.loads(out_json.read_text())["cells"]
+    assert {c["k"] for c in cells} <= {0, 1, 2}
+
+
+def test_cli_run_then_report_from_the_toml(tmp_path, capsys):
+    from ship_gym.cli import main
+
+    path = _write(tmp_path, headings="[90]", seeds=1)
+    assert main(["campaign", "run", str(path), "--no-progress"]) == 0
+    assert (tmp_path / "c.campaign").is_dir()
+    assert main(["campaign", "run", str(path), "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert "ran 1 cells" in out and "ran 0 cells" in out and "1 already in the store" in out
+    assert main(["campaign", "report", str(path)]) == 0
+    assert "1 runs in 1 cells" in capsys.readouterr().out
