@@ -179,10 +179,9 @@ class SerialExecutor(_Closing):
 # local processes
 
 
-def _process_initializer(parent_pid: int, env: dict[str, str]) -> None:
-    """Worker initializer: one-thread environment, die with the parent (Linux
-    ``PR_SET_PDEATHSIG``), and exit at once if the parent is already gone."""
-    os.environ.update(env)
+def die_with_parent(parent_pid: int) -> None:
+    """Worker initializer: ask Linux to SIGKILL this worker when its parent dies (even by
+    SIGKILL, ``PR_SET_PDEATHSIG``), and exit now if the parent is already gone."""
     if sys.platform.startswith("linux"):
         import ctypes
         import signal
@@ -192,6 +191,12 @@ def _process_initializer(parent_pid: int, env: dict[str, str]) -> None:
             libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
     if os.getppid() != parent_pid:
         os._exit(1)
+
+
+def _process_initializer(parent_pid: int, env: dict[str, str]) -> None:
+    """Worker initializer: one-thread environment, :func:`die_with_parent`."""
+    os.environ.update(env)
+    die_with_parent(parent_pid)
     with contextlib.suppress(Exception):
         from threadpoolctl import threadpool_limits
 

@@ -337,21 +337,6 @@ def write_json(path: str | Path | None, payload: Any, option: str = "--json") ->
     print(f"wrote {path}")
 
 
-def _die_with_parent(parent_pid: int) -> None:
-    """Worker initializer: ask Linux to SIGKILL this worker when its parent dies (even by
-    SIGKILL), and exit now if the parent is already gone."""
-    import ctypes
-    import signal
-    import sys
-
-    if sys.platform.startswith("linux"):
-        with contextlib.suppress(OSError, AttributeError):
-            libc = ctypes.CDLL("libc.so.6", use_errno=True)
-            libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
-    if os.getppid() != parent_pid:
-        os._exit(1)
-
-
 def kill_worker_processes() -> None:
     """Terminate joblib/loky's reusable worker processes now (they otherwise idle for 300 s)."""
     import sys
@@ -374,8 +359,10 @@ def workers_die_with_parent() -> Any:
     except ImportError:  # pragma: no cover - joblib is a dependency
         yield
         return
+    from ship_gym.analysis.executors import die_with_parent
+
     try:
-        with parallel_config(backend="loky", initializer=_die_with_parent, initargs=(os.getpid(),)):
+        with parallel_config(backend="loky", initializer=die_with_parent, initargs=(os.getpid(),)):
             yield
     except BaseException:
         kill_worker_processes()
