@@ -61,19 +61,19 @@ campaign gives bit-identical outcomes run serially, in parallel or resumed.
 
 from __future__ import annotations
 
-import dataclasses
 import hashlib
 import json
 import math
 import os
 import time
 import tomllib
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal, Protocol
+from typing import Any, Literal
 
 from ship_gym.analysis.capsize_map import SeaSpec
+from ship_gym.analysis.executors import Executor
 
 __all__ = [
     "CELL_SCHEMA",
@@ -123,18 +123,6 @@ _RADIATIONS = ("state_space", "convolution", "2a", "2b", "none")
 
 class CampaignError(ValueError):
     """A bad campaign description; the message names the field as written."""
-
-
-class Executor(Protocol):
-    """What :func:`run_campaign` needs of an executor (:mod:`ship_gym.analysis.executors`)."""
-
-    workers: int
-
-    def map_unordered(
-        self, fn: Callable[[Any], Any], items: Sequence[Any]
-    ) -> Iterator[tuple[int, Any]]: ...
-
-    def close(self) -> None: ...
 
 
 # ----------------------------------------------------------------------------- description
@@ -680,40 +668,6 @@ def tasks(spec: CampaignSpec, pending: Sequence[CampaignCell]) -> list[CampaignT
 
 
 # ----------------------------------------------------------------------------- running
-def _run_cells_without_rudder(config: Any, cells_: Sequence[Any], angle: float) -> list[dict]:
-    """:func:`~ship_gym.analysis.capsize_map.run_cells` for a ship without rudder (no
-    controller): the same batch, the setup with ``rudder="none"``."""
-    from ship_gym.analysis import capsize_map as cm
-    from ship_gym.engine.batch import build_batch_simulator
-    from ship_gym.engine.ship import wave_field_for
-
-    t0 = time.process_time()
-    fields = []
-    for cell in cells_:
-        setup, sea, beta, rng = cm.cell_setup(config, cell)
-        fields.append(wave_field_for(sea, beta, rng))
-    setup = dataclasses.replace(setup, rudder="none")
-    sim = build_batch_simulator(setup, fields, sea=sea, wave_heading=beta)
-    results = cm.simulate_ships_until_capsize(
-        sim,
-        config.duration,
-        math.radians(angle),
-        record_every=config.record_every,
-        stats_after=config.seas[0].ramp_time,
-    )
-    cpu = (time.process_time() - t0) / len(cells_)
-    return [
-        {
-            **dataclasses.asdict(outcome),
-            "speed": setup.speed,
-            "cpu_s": cpu,
-            "engine": "compiled" if sim.compiled else "numpy",
-            "batch_size": len(cells_),
-        }
-        for outcome, _ in results
-    ]
-
-
 def run_task(task: CampaignTask) -> list[dict]:
     """Run one task (its seeds as one engine batch) and return its store records.
 
@@ -753,10 +707,7 @@ def run_task(task: CampaignTask) -> list[dict]:
             capsize_angle_deg=angle,
             record_every=task.record_every,
         )
-        if task.controller == "autopilot":
-            outs = cm.run_cells(config, config.cells(), angle)
-        else:
-            outs = _run_cells_without_rudder(config, config.cells(), angle)
+        outs = cm.run_cells(config, config.cells(), angle, steered=task.controller == "autopilot")
     wall = (time.perf_counter() - t0) / len(task.cells)
     host = socket.gethostname()
     version = _ship_gym_version()
@@ -817,44 +768,22 @@ def _ship_gym_version() -> str:
         return "unknown"
 
 
-class _SerialExecutor:
-    """In-process stand-in used for ``"serial"`` while :mod:`ship_gym.analysis.executors` is
-    missing."""
-
-    workers = 1
-
-    def map_unordered(
-        self, fn: Callable[[Any], Any], items: Sequence[Any]
-    ) -> Iterator[tuple[int, Any]]:
-        for i, item in enumerate(items):
-            yield i, fn(item)
-
-    def close(self) -> None:
-        pass
-
-
 def make_campaign_executor(kind: str, *, workers: int = 1, address: str | None = None) -> Executor:
-    """An executor of :mod:`ship_gym.analysis.executors` (``"serial"`` works without it).
+    """An executor of :mod:`ship_gym.analysis.executors`, the arguments checked first.
 
     Raises
     ------
     ValueError
         Unknown kind or workers < 1.
     ImportError
-        The executors module (or Ray for ``"ray"``) is not available.
+        Ray is not installed (``"ray"``).
     """
     if kind not in ("serial", "processes", "ray"):
         raise ValueError(f"executor must be 'serial', 'processes' or 'ray', got {kind!r}")
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
-    try:
-        from ship_gym.analysis.executors import make_executor
-    except ImportError:
-        if kind == "serial":
-            return _SerialExecutor()
-        raise ImportError(
-            f"executor {kind!r} needs ship_gym.analysis.executors, which is not available"
-        ) from None
+    from ship_gym.analysis.executors import make_executor
+
     return make_executor(kind, workers=workers, address=address)  # type: ignore[arg-type]
 
 

@@ -889,7 +889,11 @@ def cell_setup(config: CapsizeMapConfig, cell: Cell) -> tuple[ShipSetup, Any, fl
 
 
 def build_cells_simulator(
-    config: CapsizeMapConfig, cells: Sequence[Cell], *, backend: EngineBackend = "auto"
+    config: CapsizeMapConfig,
+    cells: Sequence[Cell],
+    *,
+    backend: EngineBackend = "auto",
+    steered: bool = True,
 ) -> BatchSimulator:
     """One :class:`~ship_gym.engine.batch.BatchSimulator` whose ship i is ``cells[i]``.
 
@@ -905,6 +909,8 @@ def build_cells_simulator(
         The cells (≥ 1).
     backend : {"auto", "compiled", "numpy"}
         Engine backend (:func:`~ship_gym.engine.batch.build_batch_simulator`).
+    steered : bool
+        Under the heading autopilot (the map's ship); False: no rudder at all.
 
     Raises
     ------
@@ -926,6 +932,8 @@ def build_cells_simulator(
     for cell in cells:
         setup, sea, beta, rng = cell_setup(config, cell)
         fields.append(wave_field_for(sea, beta, rng))
+    if not steered:
+        setup = dataclasses.replace(setup, rudder="none")
     return build_batch_simulator(
         setup,
         fields,
@@ -941,6 +949,7 @@ def run_cells(
     capsize_angle_deg: float,
     *,
     engine: EngineChoice = "auto",
+    steered: bool = True,
 ) -> list[dict]:
     """Simulate cells of one (sea, heading, Froude number) and return their records.
 
@@ -959,6 +968,8 @@ def run_cells(
         |φ| counted as capsize [deg].
     engine : {"auto", "engine", "simulator"}
         Which path (:data:`EngineChoice`).
+    steered : bool
+        Under the heading autopilot; False: no rudder (on the engine only).
 
     Returns
     -------
@@ -969,11 +980,13 @@ def run_cells(
     """
     cells = list(cells)
     if not use_engine(engine, config.radiation, config.integrator):
+        if not steered:
+            raise ValueError("an unsteered ship runs on the engine only (engine='auto')")
         return [_run_cell_simulator(config, c, capsize_angle_deg) for c in cells]
     if not cells:
         return []
     t0 = time.process_time()
-    sim = build_cells_simulator(config, cells)
+    sim = build_cells_simulator(config, cells, steered=steered)
     setup, _, _, _ = cell_setup(config, cells[0])
     results = simulate_ships_until_capsize(
         sim,

@@ -111,6 +111,24 @@ def test_ray_with_two_local_workers_is_bit_identical(serial, tmp_path):
     assert _outputs(res.records) == _outputs(ref.records)
 
 
+def test_an_unsteered_ship_has_no_rudder_and_its_own_cells(serial, tmp_path):
+    """``controller = "none"``: the same seas without a rudder, other cell ids, other runs."""
+    _, ref = serial
+    path = tmp_path / "free.toml"
+    path.write_text(TINY.format(headings="[90, 60]", seeds=2).replace(
+        'name = "tiny"', 'name = "tiny"\ncontroller = "none"'))  # fmt: skip
+    free = cp.read_campaign(path)
+    res = cp.run_campaign(free, tmp_path / "free", progress=False)
+    assert res.n_run == 4
+    assert {c.cell_id for c in cp.cells(free)}.isdisjoint(r["cell_id"] for r in ref.records)
+    assert _outputs(res.records) != _outputs(ref.records)
+    from ship_gym.analysis import capsize_map as cm
+
+    with pytest.raises(ValueError, match="engine only"):
+        cm.run_cells(cm.CapsizeMapConfig(), [cm.Cell(0, 0, 0, 0)], 30.0, engine="simulator",
+                     steered=False)  # fmt: skip
+
+
 def test_cell_ids_stable_and_independent_of_list_order(tmp_path):
     a = cp.cells(cp.read_campaign(_write(tmp_path, "a.toml", headings="[90, 60]")))
     b = cp.cells(cp.read_campaign(_write(tmp_path, "b.toml", headings="[60.0, 90]")))
