@@ -96,15 +96,7 @@ of the run protocol makes old results not comparable (old cells are then re-run)
 
 ControllerName = Literal["autopilot", "none"]
 
-_TOP_KEYS = {
-    "name",
-    "description",
-    "ships",
-    "loadings",
-    "headings_deg",
-    "froude_numbers",
-    "speeds_mps",
-    "seas",
+_SCALAR_KEYS = (
     "seeds",
     "duration_s",
     "dt_s",
@@ -115,6 +107,18 @@ _TOP_KEYS = {
     "batch_seeds",
     "record_every",
     "database",
+    "name",
+)
+"""Top-level keys taken as they are (checked by :class:`CampaignSpec`)."""
+_TOP_KEYS = {
+    *_SCALAR_KEYS,
+    "description",
+    "ships",
+    "loadings",
+    "headings_deg",
+    "froude_numbers",
+    "speeds_mps",
+    "seas",
 }
 _REGULAR_KEYS = {"kind", "height_m", "wavelength_m", "period_s", "ramp_s"}
 _JONSWAP_KEYS = {"kind", "hs_m", "tp_s", "gamma", "n_components", "ramp_s", "spreading_s"}
@@ -434,19 +438,7 @@ def read_campaign(path: str | os.PathLike[str]) -> CampaignSpec:
             "speeds_mps": tuple(_list(doc, "speeds_mps", [])),
             "base_dir": path.resolve().parent,
         }
-        for key in (
-            "seeds",
-            "duration_s",
-            "dt_s",
-            "integrator",
-            "radiation",
-            "capsize_angle_deg",
-            "controller",
-            "batch_seeds",
-            "record_every",
-            "database",
-            "name",
-        ):
+        for key in _SCALAR_KEYS:
             if key in doc:
                 kw[key] = doc[key]
         if not isinstance(kw.get("name", ""), str):
