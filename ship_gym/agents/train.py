@@ -52,7 +52,8 @@ from ship_gym.agents.configs import find_config
 
 __all__ = ["TrainConfig", "load_config", "make_training_env", "train"]
 
-ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
+from ship_gym.envs.saved_policies import ALGORITHMS
+
 VECTORIZATIONS = ("vector", "dummy")
 
 

@@ -29,6 +29,7 @@ autopilot, capsize when |φ| passes the capsize angle). It is described by a TOM
     hs_m = 7.0
     tp_s = 15.0
     gamma = 3.3
+    spreading_s = 8                        # optional: short-crested (cos-2s), else long-crested
 
 Cells and their ids. A cell is one run; its ``cell_id`` is the first 20 hex digits of the SHA-256
 of a canonical JSON (sorted keys, no spaces, numbers as floats) of everything that defines the
@@ -38,10 +39,11 @@ run (:func:`cell_identity`):
   the mesh/offsets it names), not by its path — moving or renaming a file keeps its cells, editing
   it makes new ones (a library hull without a file: its name);
 * the loading overrides, the sea state (kind, height, wavelength or period, ramp; γ and the number
-  of components for a spectrum), the heading [deg], the speed as given (``froude`` or ``mps`` and
-  its value), the seed;
+  of components for a spectrum, and its spreading exponent when short-crested), the heading
+  [deg], the speed as given (``froude`` or ``mps`` and its value), the seed;
 * the run settings: duration, time step, integrator, radiation model, the capsize criterion
-  (``"vanishing"`` or the angle), the controller, ``record_every`` and the database;
+  (``"vanishing"`` or the angle), the controller (a trained policy by the content of its
+  files), ``record_every`` and the database;
 * :data:`CELL_SCHEMA`, bumped when a change of ship_gym changes what a cell computes.
 
 The ship_gym version itself is *not* hashed — every release would otherwise invalidate every
@@ -69,11 +71,13 @@ import time
 import tomllib
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 from typing import Any, Literal
 
 from ship_gym.analysis.capsize_map import SeaSpec
 from ship_gym.analysis.executors import Executor
+from ship_gym.analysis.policy_cells import POLICY_PREFIX, PolicyController
 
 __all__ = [
     "CELL_SCHEMA",
@@ -94,7 +98,8 @@ CELL_SCHEMA = 1
 """Version of what a cell computes, part of every cell id: bump it when a change of the physics or
 of the run protocol makes old results not comparable (old cells are then re-run)."""
 
-ControllerName = Literal["autopilot", "none"]
+ControllerName = str
+"""``"autopilot"``, ``"none"`` or ``"policy:PATH"`` (:mod:`ship_gym.analysis.policy_cells`)."""
 
 _SCALAR_KEYS = (
     "seeds",
@@ -164,9 +169,11 @@ class CampaignSpec:
         Radiation model.
     capsize_angle_deg : float or "vanishing"
         |φ| counted as capsize [deg], or the angle of vanishing stability of each loading.
-    controller : {"autopilot", "none"}
-        Heading autopilot on the rudder, or no rudder at all (propeller at the self-propulsion
-        rpm either way).
+    controller : str
+        ``"autopilot"``: the heading autopilot on the rudder; ``"none"``: no rudder at all
+        (propeller at the self-propulsion rpm either way); ``"policy:PATH"``: a policy trained
+        by ``ship-gym train`` (its run folder or ``model.zip``, relative to the campaign file)
+        driving the environment it was trained in (:mod:`ship_gym.analysis.policy_cells`).
     batch_seeds : int
         Seeds per task (one engine call).
     record_every : int
@@ -283,18 +290,62 @@ class CampaignSpec:
                 f"capsize_angle_deg = {angle!r}; expected an angle in (0, 180] [deg] or "
                 "'vanishing' (the angle of vanishing stability of each loading)"
             )
-        if self.controller not in ("autopilot", "none"):
-            hint = (
-                "; a trained policy as controller is not supported yet"
-                if isinstance(self.controller, str)
-                and self.controller.endswith((".zip", ".pt", ".pth"))
-                else ""
-            )
+        if not isinstance(self.controller, str) or not (
+            self.controller in ("autopilot", "none") or self.controller.startswith(POLICY_PREFIX)
+        ):
             raise CampaignError(
-                f"controller = {self.controller!r}; expected 'autopilot' or 'none'{hint}"
+                f"controller = {self.controller!r}; expected 'autopilot', 'none' or "
+                "'policy:PATH' (a `ship-gym train` run folder or its model.zip)"
             )
+        if self.policy is not None:
+            self._check_policy_cells()
         if not isinstance(self.database, str):
             raise CampaignError(f"database = {self.database!r}; expected a string")
+
+    @cached_property
+    def policy(self) -> PolicyController | None:
+        """The trained policy of ``controller = "policy:PATH"`` (None for the others)."""
+        if not self.controller.startswith(POLICY_PREFIX):
+            return None
+        from ship_gym.analysis.policy_cells import read_policy_controller
+
+        raw = self.controller[len(POLICY_PREFIX) :]
+        path = (self.base_dir / Path(raw).expanduser()).resolve()
+        try:
+            return read_policy_controller(path, field=f"controller = {self.controller!r}")
+        except ValueError as exc:
+            raise CampaignError(str(exc)) from None
+
+    def _check_policy_cells(self) -> None:
+        """What a policy's environment cannot run is refused before any work."""
+        from ship_gym.analysis.policy_cells import cell_env_kwargs
+
+        assert self.policy is not None
+        field_of = f"controller = {self.controller!r}"
+        if self.radiation != "state_space":
+            raise CampaignError(
+                f"radiation = {self.radiation!r}; a policy's environment runs state-space "
+                f"radiation ({field_of}): expected 'state_space'"
+            )
+        if self.database != "auto":
+            raise CampaignError(
+                f"database = {self.database!r}; a policy's environment runs the ship's own "
+                f"database ({field_of}): expected 'auto'"
+            )
+        for load in self.loadings:
+            for sea in self.seas:
+                try:
+                    cell_env_kwargs(
+                        self.policy, ship="s175", loading=load, sea=sea, dt_s=self.dt_s,
+                        integrator=self.integrator, capsize_angle_deg=30.0,
+                    )  # fmt: skip
+                except ValueError as exc:
+                    raise CampaignError(f"{exc} ({field_of})") from None
+
+    @property
+    def controller_identity(self) -> str | dict:
+        """The controller as a cell id hashes it: a policy by its content, not its path."""
+        return {"policy": self.policy.digest} if self.policy is not None else self.controller
 
     @property
     def speed_kind(self) -> Literal["froude", "mps"]:
@@ -359,12 +410,15 @@ def _sea(table: object, where: str) -> SeaSpec:
             height = number("height_m")
             assert height is not None
             return SeaSpec("regular", height, period=period, wavelength=wavelength, ramp_time=ramp)
-        if table.get("spreading_s") is not None:
-            raise CampaignError(
-                f"{where} spreading_s = {table['spreading_s']!r}: short-crested seas are not "
-                "supported by the capsize engine path yet (it runs long-crested JONSWAP seas); "
-                "remove spreading_s"
-            )
+        spreading = None
+        if "spreading_s" in table:
+            spreading = table["spreading_s"]
+            if not _is_number(spreading) or not 0.0 <= spreading <= 1000.0:
+                raise CampaignError(
+                    f"{where} spreading_s = {spreading!r}; expected a cos-2s exponent s in "
+                    "[0, 1000] (leave it out for a long-crested sea)"
+                )
+            spreading = float(spreading)
         hs, tp = number("hs_m"), number("tp_s")
         gamma = number("gamma", required=False, default=3.3)
         n_comp = table.get("n_components", 50)
@@ -384,6 +438,7 @@ def _sea(table: object, where: str) -> SeaSpec:
             gamma=gamma,
             n_components=n_comp,
             ramp_time=ramp,
+            spreading_s=spreading,
         )
     except CampaignError:
         raise
@@ -529,6 +584,8 @@ def _sea_identity(sea: SeaSpec) -> dict:
         d["period"] = sea.period if sea.wavelength is None else None
     else:
         d.update(period=sea.period, gamma=sea.gamma, n_components=sea.n_components)
+        if sea.spreading_s is not None:  # long-crested cells keep the ids they had
+            d["spreading_s"] = sea.spreading_s
     return d
 
 
@@ -556,7 +613,7 @@ def cell_identity(
             "integrator": spec.integrator,
             "radiation": spec.radiation,
             "capsize_angle_deg": spec.capsize_angle_deg,
-            "controller": spec.controller,
+            "controller": spec.controller_identity,
             "record_every": spec.record_every,
             "database": spec.database,
         }
@@ -651,7 +708,9 @@ def tasks(spec: CampaignSpec, pending: Sequence[CampaignCell]) -> list[CampaignT
                     integrator=spec.integrator,
                     radiation=spec.radiation,
                     capsize_angle_deg=spec.capsize_angle_deg,
-                    controller=spec.controller,
+                    controller=(
+                        spec.controller if spec.policy is None else POLICY_PREFIX + spec.policy.path
+                    ),
                     record_every=spec.record_every,
                     database=spec.database,
                 )
@@ -699,7 +758,11 @@ def run_task(task: CampaignTask) -> list[dict]:
             capsize_angle_deg=angle,
             record_every=task.record_every,
         )
-        outs = cm.run_cells(config, config.cells(), angle, steered=task.controller == "autopilot")
+        if task.controller.startswith(POLICY_PREFIX):
+            outs = _run_policy_task(task, first, loading, froude, angle)
+        else:
+            steered = task.controller == "autopilot"
+            outs = cm.run_cells(config, config.cells(), angle, steered=steered)
     wall = (time.perf_counter() - t0) / len(task.cells)
     host = socket.gethostname()
     version = _ship_gym_version()
@@ -719,6 +782,7 @@ def run_task(task: CampaignTask) -> list[dict]:
                 "sea_wavelength_m": sea.wavelength,
                 "sea_period_s": sea.period,
                 "sea_gamma": sea.gamma if sea.kind == "irregular" else None,
+                "sea_spreading_s": sea.spreading_s,
                 "heading_deg": cell.heading_deg,
                 "speed_kind": cell.speed_kind,
                 "speed_value": cell.speed_value,
@@ -749,6 +813,35 @@ def run_task(task: CampaignTask) -> list[dict]:
             }
         )
     return records
+
+
+def _run_policy_task(
+    task: CampaignTask, first: CampaignCell, loading: dict, froude: float, angle: float
+) -> list[dict]:
+    """The seeds of a task under its trained policy (:mod:`ship_gym.analysis.policy_cells`)."""
+    import torch
+
+    from ship_gym.analysis.policy_cells import read_policy_controller, run_policy_cells
+    from ship_gym.ship import hull_of
+
+    torch.set_num_threads(1)
+    controller = read_policy_controller(
+        task.controller[len(POLICY_PREFIX) :], field=f"controller = {task.controller!r}"
+    )
+    hull = hull_of(first.ship_path, **loading)
+    return run_policy_cells(
+        controller,
+        ship=first.ship_path,
+        loading=loading,
+        sea=first.sea,
+        heading_deg=first.heading_deg,
+        speed_mps=froude * math.sqrt(hull.g * hull.particulars.lpp),
+        seeds=[c.seed for c in task.cells],
+        duration_s=task.duration_s,
+        dt_s=task.dt_s,
+        integrator=task.integrator,
+        capsize_angle_deg=angle,
+    )
 
 
 def _ship_gym_version() -> str:

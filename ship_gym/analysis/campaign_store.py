@@ -40,6 +40,7 @@ COLUMNS: tuple[tuple[str, str], ...] = (
     ("sea_wavelength_m", "float64"),
     ("sea_period_s", "float64"),
     ("sea_gamma", "float64"),
+    ("sea_spreading_s", "float64"),
     ("heading_deg", "float64"),
     ("speed_kind", "string"),
     ("speed_value", "float64"),
@@ -71,7 +72,8 @@ COLUMNS: tuple[tuple[str, str], ...] = (
     ("ship_gym_version", "string"),
 )
 """Columns of every shard: (name, Arrow type). ``loading`` and ``sea`` are canonical JSON /
-labels; ``time_to_capsize_s`` and ``sea_wavelength_m``/``sea_period_s`` may be null."""
+labels; ``time_to_capsize_s``, ``sea_wavelength_m``/``sea_period_s``, ``sea_gamma`` and
+``sea_spreading_s`` (long-crested) may be null."""
 
 COST_COLUMNS = ("cpu_s", "wall_s", "engine", "batch_size", "host", "ship_gym_version", "task_id")
 """Columns that describe how a cell was run, not what it gave (they differ between a serial and a
@@ -171,6 +173,8 @@ def read_store(store: str | Path) -> list[dict]:
                 f"{shard}: not a readable Parquet shard ({exc}); remove it to re-run its task"
             ) from None
         for row in table.to_pylist():
+            for name, _ in COLUMNS:  # a column added since the shard was written: null
+                row.setdefault(name, None)
             if row["cell_id"] not in seen:
                 seen.add(row["cell_id"])
                 out.append(row)

@@ -164,8 +164,8 @@ class SeaSpec:
     Parameters
     ----------
     kind : {"regular", "irregular"}
-        Regular wave (``height`` H, ``wavelength`` λ or ``period`` T) or a long-crested JONSWAP
-        sea (``height`` Hs, ``period`` Tp, ``gamma``, ``n_components``).
+        Regular wave (``height`` H, ``wavelength`` λ or ``period`` T) or a JONSWAP sea
+        (``height`` Hs, ``period`` Tp, ``gamma``, ``n_components``, ``spreading_s``).
     height : float
         H or Hs [m].
     period : float, optional
@@ -178,6 +178,10 @@ class SeaSpec:
         Wave components (irregular only).
     ramp_time : float
         Start-up ramp T_f [s] (Matusiak eq. 12).
+    spreading_s : float or None
+        Cos-2s directional spreading exponent s [-] of a short-crested JONSWAP sea (each
+        component's direction drawn from the spreading about β,
+        :class:`~ship_gym.waves.sea_state.IrregularSea`); None: long-crested (irregular only).
     """
 
     kind: Literal["regular", "irregular"] = "regular"
@@ -187,10 +191,13 @@ class SeaSpec:
     gamma: float = 3.3
     n_components: int = 50
     ramp_time: float = 50.0
+    spreading_s: float | None = None
 
     def __post_init__(self) -> None:
         if self.kind not in ("regular", "irregular"):
             raise ValueError(f"sea kind must be 'regular' or 'irregular', got {self.kind!r}")
+        if self.kind == "regular" and self.spreading_s is not None:
+            raise ValueError("a regular wave is long-crested: spreading_s must be None")
         if self.kind == "irregular" and self.period is None:
             raise ValueError("an irregular sea needs its peak period Tp [s] (period=...)")
         self.to_sea()  # validates the numbers (steepness, positivity…)
@@ -212,6 +219,7 @@ class SeaSpec:
             gamma=self.gamma,
             n_components=int(self.n_components),
             ramp_time=self.ramp_time,
+            spreading_s=None if self.spreading_s is None else float(self.spreading_s),
         )
 
     def _regular_wave(self, phase: float = 0.0) -> RegularWave:
@@ -229,7 +237,8 @@ class SeaSpec:
         """Short human-readable name, e.g. ``"regular H=10.5 m λ=262.5 m"``."""
         if self.kind == "regular":
             return f"regular H={self.height:g} m λ={self._regular_wave().wavelength:.1f} m"
-        return f"JONSWAP Hs={self.height:g} m Tp={self.period:g} s"
+        crest = "" if self.spreading_s is None else f" cos-2s s={self.spreading_s:g}"
+        return f"JONSWAP Hs={self.height:g} m Tp={self.period:g} s{crest}"
 
     @classmethod
     def parse(cls, text: str) -> SeaSpec:
@@ -343,6 +352,9 @@ class CapsizeMapConfig:
     def to_dict(self) -> dict:
         """JSON-ready dict (with the results-file format version)."""
         d = dataclasses.asdict(self)
+        for sea in d["seas"]:  # long-crested seas read as before spreading_s existed
+            if sea["spreading_s"] is None:
+                del sea["spreading_s"]
         d["format_version"] = FORMAT_VERSION
         return json.loads(json.dumps(d))
 

@@ -23,6 +23,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -32,6 +33,7 @@ __all__ = [
     "clopper_pearson_interval",
     "kaplan_meier",
     "plot_polar_capsize",
+    "plot_survival",
     "seeds_for_half_width",
     "summarise_cells",
     "wilson_half_width",
@@ -252,6 +254,8 @@ class CellSummary:
         Kaplan–Meier median [s] (NaN when fewer than half capsize).
     max_abs_roll_deg : float
         Largest |φ| over the seeds [deg].
+    survival : SurvivalCurve or None
+        Kaplan–Meier curve of the time to capsize (:func:`plot_survival`).
     """
 
     group: dict
@@ -264,6 +268,7 @@ class CellSummary:
     seeds_needed: int | None
     median_time_to_capsize: float
     max_abs_roll_deg: float
+    survival: SurvivalCurve | None = None
 
     def to_dict(self) -> dict:
         """JSON-ready dict."""
@@ -281,8 +286,22 @@ class CellSummary:
         }
 
 
-GROUP_KEYS = ("ship", "loading", "sea", "heading_deg", "speed_kind", "speed_value")
-"""Record columns that define a cell apart from its seed (:func:`summarise_cells`)."""
+GROUP_KEYS = (
+    "ship",
+    "loading",
+    "sea",
+    "heading_deg",
+    "speed_kind",
+    "speed_value",
+    "controller",
+    "capsize_criterion",
+    "duration_s",
+    "dt_s",
+    "integrator",
+    "radiation",
+)
+"""Record columns that define a cell apart from its seed (:func:`summarise_cells`): a store with
+runs of one sea under two controllers (or criteria, durations…) summarises them apart."""
 
 
 def summarise_cells(
@@ -338,6 +357,7 @@ def summarise_cells(
                 ),
                 median_time_to_capsize=curve.median(),
                 max_abs_roll_deg=max(float(r["max_abs_roll_deg"]) for r in rs),
+                survival=curve,
             )
         )
     return out
@@ -368,14 +388,12 @@ def plot_polar_capsize(
     import matplotlib.pyplot as plt
     from matplotlib.colors import LinearSegmentedColormap
 
-    from ship_gym.io_utils import atomic_write
-
     if not summaries:
         raise ValueError("nothing to plot: no finished cells")
     panels: dict[tuple, list[CellSummary]] = {}
     for s in summaries:
         g = s.group
-        panels.setdefault((g["ship"], g["loading"], g["sea"]), []).append(s)
+        panels.setdefault((g["ship"], g["loading"], g["sea"], g["controller"]), []).append(s)
     n = len(panels)
     fig, axes = plt.subplots(
         1, n, figsize=(5.2 * n + 0.8, 5.6), subplot_kw={"projection": "polar"}, squeeze=False
@@ -412,9 +430,9 @@ def plot_polar_capsize(
                 fontsize=6,
             )
         ax.set_rlim(0.0, max(speeds) + dv / 2)
-        ship, loading, sea = panel
+        ship, loading, sea, controller = panel
         unit = "Fn [-]" if kind == "froude" else "U [m/s]"
-        ax.set_title(f"{ship} {loading}\n{sea}", fontsize=8)
+        ax.set_title(f"{ship} {loading} {_controller_label(controller)}\n{sea}", fontsize=8)
         ax.set_xlabel(
             f"{unit} (radius), β [deg] (angle: 0° following, 180° head)\n"
             "bands inside → out: CI lower, p̂, CI upper",
@@ -425,8 +443,102 @@ def plot_polar_capsize(
     fig.colorbar(sm, ax=axes[0].tolist(), label=f"capsize probability ({conf} CI)", shrink=0.8)
     if title:
         fig.suptitle(title, fontsize=10)
+    return _save_figure(fig, path)
+
+
+def _save_figure(fig: Any, path: str | Path) -> Path:
+    """Write a figure atomically in the format of its suffix (PNG by default) and close it."""
+    import matplotlib.pyplot as plt
+
+    from ship_gym.io_utils import atomic_write
+
     path = Path(path)
     fmt = path.suffix.lower().lstrip(".") or "png"
     atomic_write(path, lambda p: fig.savefig(p, dpi=110, format=fmt))
     plt.close(fig)
     return path
+
+
+def _controller_label(controller: str) -> str:
+    """``"autopilot"``, ``"none"`` or ``"policy <run folder>"`` (short, for plot titles)."""
+    if controller.startswith("policy:"):
+        return f"policy {Path(controller[len('policy:') :]).parent.name}"
+    return controller
+
+
+def plot_survival(
+    summaries: Sequence[CellSummary],
+    path: str | Path,
+    *,
+    title: str = "",
+    max_curves: int = 12,
+) -> Path:
+    """Kaplan–Meier curves P(no capsize by t) of the cells that capsized, with their bands.
+
+    One step curve per cell with at least one capsize (the ``max_curves`` with the most
+    capsizes; the others are counted in the legend), its pointwise Greenwood band shaded and
+    the censoring times (runs that survived to their end) marked ``|``. Cells without capsize
+    have Ŝ = 1 throughout and are left out.
+
+    Parameters
+    ----------
+    summaries : sequence of CellSummary
+        :func:`summarise_cells` output.
+    path : str or Path
+        Image file (PNG, PDF or SVG), written atomically.
+    title : str
+        Figure title.
+    max_curves : int
+        Most curves drawn.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    if not summaries:
+        raise ValueError("nothing to plot: no finished cells")
+    hit = sorted((s for s in summaries if s.k > 0), key=lambda s: (-s.p_hat, -s.k))
+    shown, hidden = hit[:max_curves], len(hit) - min(len(hit), max_curves)
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    colours = plt.cm.tab10(np.linspace(0.0, 1.0, 10))
+    t_end = max(float(s.group["duration_s"]) for s in summaries)
+    one_loading = len({(s.group["ship"], s.group["loading"]) for s in shown}) <= 1
+    for i, s in enumerate(shown):
+        curve = s.survival
+        assert curve is not None  # summarise_cells sets it
+        g, colour = s.group, colours[i % 10]
+        unit = "Fn" if g["speed_kind"] == "froude" else "m/s"
+        t = np.append(curve.time, t_end)
+        label = (
+            f"β {g['heading_deg']:g}°, {g['speed_value']:g} {unit}, {g['sea']}"
+            f"{'' if one_loading else ', ' + str(g['ship']) + ' ' + str(g['loading'])}"
+            f" (k/n {s.k}/{s.n})"
+        )
+        ax.step(t, np.append(curve.survival, curve.survival[-1]), where="post", color=colour,
+                label=label)  # fmt: skip
+        ax.fill_between(t, np.append(curve.lower, curve.lower[-1]),
+                        np.append(curve.upper, curve.upper[-1]), step="post", color=colour,
+                        alpha=0.15, lw=0)  # fmt: skip
+        survivors = s.n - s.k
+        if survivors:
+            ax.plot([float(g["duration_s"])], [curve.survival[-1]], "|", color=colour, ms=12)
+    if not shown:
+        ax.text(0.5, 0.5, "no capsize in any cell", transform=ax.transAxes, ha="center")
+    ax.set_xlim(0.0, t_end)
+    ax.set_ylim(-0.02, 1.02)
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("P(no capsize by t) [-] (Kaplan–Meier)")
+    ax.grid(alpha=0.3)
+    extra = f"; {hidden} more cells with capsizes not drawn" if hidden else ""
+    n_safe = len(summaries) - len(hit)
+    ax.set_title(
+        (title + "\n" if title else "")
+        + "shaded: pointwise Greenwood band at the report's confidence; "
+        + f"{n_safe} cells without capsize{extra}",
+        fontsize=9,
+    )
+    if shown:
+        ax.legend(fontsize=6.5, loc="lower left")
+    fig.tight_layout()
+    return _save_figure(fig, path)

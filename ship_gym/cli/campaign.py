@@ -49,6 +49,11 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     q.add_argument("source", metavar="FILE.toml|STORE", help="campaign file or store folder")
     q.add_argument("--store", default=None, help="store folder of FILE.toml (default as run)")
     q.add_argument("--plot", default="", help="polar capsize map with its CIs (PNG, PDF, SVG)")
+    q.add_argument(
+        "--survival",
+        default="",
+        help="Kaplan-Meier time-to-capsize curves of the cells that capsized (PNG, PDF, SVG)",
+    )
     q.add_argument("--json", default=None, help="write the per-cell summary to this JSON file")
     q.add_argument(
         "--half-width",
@@ -141,6 +146,7 @@ def cmd_campaign_report(args: argparse.Namespace) -> int:
 
     source = Path(args.source)
     prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
+    prepare_output(args.survival, "--survival", suffixes=(".png", ".pdf", ".svg"))
     prepare_output(args.json, "--json")
     try:
         if source.is_dir():
@@ -185,6 +191,8 @@ def cmd_campaign_report(args: argparse.Namespace) -> int:
         )
     if args.plot:
         print(f"wrote {cs.plot_polar_capsize(summary, args.plot, title=title)}")
+    if args.survival:
+        print(f"wrote {cs.plot_survival(summary, args.survival, title=title)}")
     if args.json:
         write_json(
             args.json,

@@ -13,8 +13,12 @@ Each id has a single-episode ``entry_point`` (:class:`ship_gym.envs.base.TaskEnv
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import gymnasium
+
+if TYPE_CHECKING:
+    from ship_gym.envs.base import TaskEnv
 
 NAMESPACE = "ship_gym"
 
@@ -70,6 +74,26 @@ def max_episode_steps(name: str) -> int:
         if entry.name == name:
             return entry.max_episode_steps
     raise ValueError(f"no registered environment {name!r}; known: {[e.name for e in ENTRIES]}")
+
+
+def env_class_of(env_id: str) -> type[TaskEnv]:
+    """The single-episode env class (``<Name>Env``) of a registered id (``"ship_gym/X-vN"``, the
+    ``"ship_gym:"`` module prefix optional).
+
+    Raises
+    ------
+    ValueError
+        If ``env_id`` is not a ship_gym id.
+    """
+    import importlib
+
+    bare = env_id.split(":", 1)[1] if env_id.startswith(f"{NAMESPACE}:") else env_id
+    for entry in ENTRIES:
+        if entry.id == bare:
+            module = importlib.import_module(f"ship_gym.envs.{entry.module}")
+            env_class: type[TaskEnv] = getattr(module, f"{entry.name}Env")
+            return env_class
+    raise ValueError(f"{env_id!r} is not a ship_gym environment id; known: {list(ENV_IDS)}")
 
 
 def register_envs() -> None:

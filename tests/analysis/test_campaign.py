@@ -168,7 +168,7 @@ def test_cell_ids_stable_and_independent_of_list_order(tmp_path):
         (("headings_deg = [90, 60]", "headings_deg = [0, 360]"), "appears twice"),
         (("duration_s = 20.0", "duration_s = 20.1"), "duration_s = 20.1"),
         (("capsize_angle_deg = 1.0", 'capsize_angle_deg = "big"'), "capsize_angle_deg = 'big'"),
-        (('name = "tiny"', 'controller = "policy.zip"'), "not supported yet"),
+        (('name = "tiny"', 'controller = "policy.zip"'), "expected 'autopilot', 'none' or"),
         (('name = "tiny"', "bogus = 1"), "bogus: unknown key"),
         (('["s175"]', '["nosuchship"]'), "ships: 'nosuchship'"),
         (('name = "tiny"', "loadings = [{bogus_key = 1}]"), "loadings[0]"),
@@ -183,12 +183,37 @@ def test_bad_fields_are_named(tmp_path, extra_or_replace, message):
     assert message in str(err.value) and str(path) in str(err.value)
 
 
-def test_jonswap_spreading_is_refused_and_speeds_in_mps_run(tmp_path):
-    sea = '\n[[seas]]\nkind = "jonswap"\nhs_m = 3.0\ntp_s = 10.0\nspreading_s = 8\n'
+def test_short_crested_sea_rolls_the_ship_in_head_seas_and_keeps_long_crested_ids(tmp_path):
+    """A cos-2s sea reaches the engine: in head seas (β = 180°) a long-crested sea leaves the
+    symmetric ship upright (|φ| < 1e-6°), a short-crested one (s = 2) rolls it; adding
+    ``spreading_s`` leaves the long-crested cells' ids as they were."""
+    long_sea = '\n[[seas]]\nkind = "jonswap"\nhs_m = 3.0\ntp_s = 10.0\nramp_s = 5.0\n'
+    short_sea = long_sea + "spreading_s = 2\n"
+    text = TINY.format(headings="[180]", seeds=1).replace("capsize_angle_deg = 1.0", "")
+    base = tmp_path / "base.toml"
+    base.write_text(text + long_sea)
+    both = tmp_path / "both.toml"
+    both.write_text(text + long_sea + short_sea)
+    ids_before = {c.cell_id for c in cp.cells(cp.read_campaign(base))}
+    spec = cp.read_campaign(both)
+    assert spec.seas[2].spreading_s == 2.0 and spec.seas[1].spreading_s is None
+    assert "s=2" in spec.seas[2].label
+    cells = cp.cells(spec)
+    assert ids_before < {c.cell_id for c in cells} and len(cells) == 3
+    res = cp.run_campaign(spec, tmp_path / "s", progress=False)
+    by_sea = {r["sea"]: r for r in res.records}
+    long_roll = by_sea[spec.seas[1].label]["max_abs_roll_deg"]
+    short = by_sea[spec.seas[2].label]
+    assert long_roll < 1e-6 and short["max_abs_roll_deg"] > 0.05
+    assert short["sea_spreading_s"] == 2.0 and by_sea[spec.seas[1].label]["sea_spreading_s"] is None
+
+
+def test_bad_spreading_is_refused_and_speeds_in_mps_run(tmp_path):
+    sea = '\n[[seas]]\nkind = "jonswap"\nhs_m = 3.0\ntp_s = 10.0\nspreading_s = -1\n'
     path = _write(tmp_path, extra=sea)
-    with pytest.raises(cp.CampaignError, match=r"#2 spreading_s.*not supported"):
+    with pytest.raises(cp.CampaignError, match=r"#2 spreading_s = -1; expected a cos-2s"):
         cp.read_campaign(path)
-    path.write_text(path.read_text().replace("spreading_s = 8\n", ""))
+    path.write_text(path.read_text().replace("spreading_s = -1\n", ""))
     spec = cp.read_campaign(path)
     assert spec.seas[1].kind == "irregular" and spec.seas[1].gamma == 3.3
     text = path.read_text().replace("froude_numbers = [0.2]", "speeds_mps = [8.0]")
@@ -260,6 +285,33 @@ def test_kaplan_meier_with_censoring():
     assert math.isnan(cs.kaplan_meier([5.0, 5.0], [False, False]).median())
 
 
+def test_survival_figure_draws_the_cells_that_capsized(serial, tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    _, res = serial
+    summary = cs.summarise_cells(res.records)
+    assert all(s.survival is not None and s.survival.n == s.n for s in summary)
+    closed = []
+    real_close = plt.close
+    try:
+        plt.close = lambda fig=None: closed.append(fig)  # keep the figure to look into it
+        cs.plot_survival(summary, tmp_path / "km.png", title="tiny")
+    finally:
+        plt.close = real_close
+    ax = closed[0].axes[0]
+    steps = [line for line in ax.lines if line.get_drawstyle() == "steps-post"]
+    assert len(steps) == sum(s.k > 0 for s in summary) >= 1
+    capsizing = sorted((s for s in summary if s.k), key=lambda s: -s.p_hat)
+    for line, s in zip(steps, capsizing, strict=True):
+        # the curve ends at the Kaplan–Meier survival, 1 - k/n without censoring before the end
+        assert line.get_ydata()[-1] == pytest.approx(1.0 - s.k / s.n)
+    assert ax.get_xlabel() == "time t [s]" and "Kaplan" in ax.get_ylabel()
+    real_close(closed[0])
+
+
 def test_summary_plot_and_cli_report(serial, tmp_path, capsys):
     from ship_gym.cli import main
 
@@ -273,11 +325,12 @@ def test_summary_plot_and_cli_report(serial, tmp_path, capsys):
     out_json = tmp_path / "r.json"
     status = main(
         ["campaign", "report", str(res.store), "--plot", str(tmp_path / "p.png"), "--json",
-         str(out_json)]
+         str(out_json), "--survival", str(tmp_path / "km.png")]
     )  # fmt: skip
     out = capsys.readouterr().out
     assert status == 0, out
     assert "4 runs in 2 cells" in out and "95% CI" in out
+    assert (tmp_path / "km.png").stat().st_size > 1000
     cells = json.loads(out_json.read_text())["cells"]
     assert {c["k"] for c in cells} <= {0, 1, 2}
 

@@ -82,7 +82,12 @@ def paths(tmp_path):
     bad_sea.write_text(campaign + '[[seas]]\nkind = "jonswap"\ntp_s = 12.0\n')
     spread = tmp_path / "spread.toml"
     spread.write_text(
-        campaign + '[[seas]]\nkind = "jonswap"\nhs_m = 4.0\ntp_s = 12.0\nspreading_s = 10\n'
+        campaign + '[[seas]]\nkind = "jonswap"\nhs_m = 4.0\ntp_s = 12.0\nspreading_s = -10\n'
+    )
+    no_policy = tmp_path / "no_policy.toml"
+    no_policy.write_text(
+        campaign + 'controller = "policy:no_run"\n[[seas]]\nkind = "regular"\nheight_m = 2.0\n'
+        "wavelength_m = 100.0\n"
     )
     bad_ship = tmp_path / "bad_ship.toml"
     bad_ship.write_text(
@@ -99,6 +104,7 @@ def paths(tmp_path):
         "{campaign}": str(good_campaign),
         "{bad_sea}": str(bad_sea),
         "{spread}": str(spread),
+        "{no_policy}": str(no_policy),
         "{bad_ship}": str(bad_ship),
     }
 
@@ -265,7 +271,8 @@ CASES: list[tuple[str, int, list[str]]] = [
     ("campaign run {tmp}/none.toml", R, ["FILE.toml", "none.toml", "not found"]),
     ("campaign run {bad_toml}", R, ["bad.toml", "not a valid TOML"]),
     ("campaign run {bad_sea}", R, ["bad_sea.toml", "[[seas]] #1 hs_m", "missing"]),
-    ("campaign run {spread}", R, ["[[seas]] #1 spreading_s", "not supported"]),
+    ("campaign run {spread}", R, ["[[seas]] #1 spreading_s = -10", "cos-2s exponent"]),
+    ("campaign run {no_policy}", R, ["controller = 'policy:no_run'", "no saved model"]),
     ("campaign run {bad_ship}", R, ["ships", "nosuchship"]),
     ("campaign run {campaign} --workers 0", U, ["--workers", ">= 1"]),
     ("campaign run {campaign} --workers 2", R, ["--workers 2", "serial"]),

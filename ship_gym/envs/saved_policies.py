@@ -1,0 +1,107 @@
+"""A policy saved by ``ship-gym train`` (:mod:`ship_gym.agents.train`), loaded to act.
+
+A run folder holds ``model.zip`` (the SB3 model), ``vecnormalize.pkl`` when it was trained under
+SB3's ``VecNormalize`` (the observation statistics, applied here to raw observations) and
+``config.toml`` (the algorithm and the training env). :func:`load_policy` returns a
+:class:`ModelPolicy` with SB3's ``predict`` signature, which the evaluation
+(:mod:`ship_gym.agents.evaluate`) and the capsize campaigns
+(:mod:`ship_gym.analysis.policy_cells`) run like any classical controller. stable-baselines3 is
+imported only when a policy is loaded.
+"""
+
+from __future__ import annotations
+
+import pickle
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["ALGORITHMS", "ModelPolicy", "load_policy"]
+
+ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
+"""The stable-baselines3 algorithms a run may name (``[algorithm] name``)."""
+
+
+@dataclass
+class ModelPolicy:
+    """A saved SB3 model (and its ``VecNormalize`` observation statistics, if any).
+
+    Attributes
+    ----------
+    model : stable_baselines3 BaseAlgorithm
+        The loaded model.
+    obs_normalizer : VecNormalize or None
+        Observation normalisation used in training (applied to raw observations here).
+    """
+
+    model: Any
+    obs_normalizer: Any = None
+    path: str = ""
+    #: ``[env]`` of the run's ``config.toml`` (``id``, ``kwargs``) when saved with the model.
+    training_env: dict = field(default_factory=dict)
+    _unused: dict = field(default_factory=dict, repr=False)
+
+    def predict(
+        self,
+        observation: NDArray,
+        state: Any = None,
+        episode_start: NDArray | None = None,
+        deterministic: bool = True,
+    ) -> tuple[NDArray, Any]:
+        obs = observation
+        if self.obs_normalizer is not None:
+            obs = self.obs_normalizer.normalize_obs(np.asarray(observation))
+        return self.model.predict(
+            obs, state=state, episode_start=episode_start, deterministic=deterministic
+        )
+
+
+def load_policy(path: str | Path, device: str = "cpu") -> ModelPolicy:
+    """Load a model saved by :mod:`ship_gym.agents.train` (a run directory or a ``.zip``).
+
+    The algorithm is read from the run's ``config.toml`` when present, else every SB3 algorithm
+    is tried. A ``vecnormalize.pkl`` beside the model is applied to the observations.
+    """
+    import stable_baselines3
+
+    p = Path(path)
+    run_dir = p if p.is_dir() else p.parent
+    zip_path = p / "model.zip" if p.is_dir() else p
+    if not zip_path.exists():
+        raise FileNotFoundError(f"no saved model at {zip_path}")
+    names: list[str] = list(ALGORITHMS)
+    config_path = run_dir / "config.toml"
+    training_env: dict = {}
+    if config_path.exists():
+        try:
+            saved = tomllib.loads(config_path.read_text())
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{config_path}: invalid TOML: {exc}") from None
+        algo = str(saved.get("algorithm", {}).get("name", "")).upper()
+        if algo:
+            names = [algo]
+        env = saved.get("env", {})
+        training_env = {"id": env.get("id"), "kwargs": dict(env.get("kwargs", {}))}
+    model = None
+    errors = []
+    for name in names:
+        try:
+            model = getattr(stable_baselines3, name).load(zip_path, device=device)
+            break
+        except Exception as exc:  # wrong algorithm class: try the next
+            errors.append(f"{name}: {exc}")
+    if model is None:
+        raise ValueError(f"could not load {zip_path} with {names}: {errors}")
+    normalizer = None
+    norm_path = run_dir / "vecnormalize.pkl"
+    if norm_path.exists():
+        with open(norm_path, "rb") as fh:
+            normalizer = pickle.load(fh)
+        normalizer.training = False
+    return ModelPolicy(
+        model=model, obs_normalizer=normalizer, path=str(zip_path), training_env=training_env
+    )
