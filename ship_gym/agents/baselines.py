@@ -23,6 +23,9 @@ controller does not drive is 0. Outputs are clipped to [-1, 1].
 * :class:`RollFinController` — classical PD roll stabiliser δ = −(k_φ φ + k_p p) on the fins (or
   any roll-moment actuator: positive command, starboard-down moment;
   :class:`ship_gym.control.stabilisers.FinController`).
+* :class:`IMOGuidanceMaster` — CapsizeAvoidance's rule-based master: course and speed out of
+  the dangerous zones of the IMO guidance MSC.1/Circ.1228 (surf-riding, successive high waves,
+  synchronous and parametric rolling), the most progress among the safe options.
 * :class:`RideController` — T-foil ride control δ = k_w w − k_q q on heave velocity and pitch
   rate (positive command, upward force and bow-up moment;
   :class:`ship_gym.control.stabilisers.RideController`).
@@ -39,9 +42,12 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
+from ship_gym.conventions import GRAVITY
+
 __all__ = [
     "BASELINES",
     "Baseline",
+    "IMOGuidanceMaster",
     "PIDAutopilot",
     "RideController",
     "RollFinController",
@@ -52,6 +58,7 @@ __all__ = [
 ]
 
 _DEGREE_UNITS = {"deg": math.pi / 180.0, "deg/s": math.pi / 180.0}
+_KNOT = 1852.0 / 3600.0  # [m/s]
 
 
 def _base_and_unit(name: str) -> tuple[str, str | None]:
@@ -401,8 +408,238 @@ class RideController(Baseline):
         return self._drive(obs, "foil", self.k_heave * w - self.k_pitch * q), None
 
 
+def _action_scale(name: str, pattern: str, what: str) -> float:
+    """The number an action name states for a = ±1 (e.g. ``±2 deg per step``)."""
+    found = re.search(pattern, name)
+    if found is None:
+        raise ValueError(f"action {name!r} does not state its {what} (expected {pattern!r})")
+    return float(found.group(1))
+
+
+@dataclass
+class IMOGuidanceMaster(Baseline):
+    """A rule-based master for CapsizeAvoidance: the IMO guidance MSC.1/Circ.1228, §4.2.
+
+    Every control step the master evaluates a grid of candidate (course deviation d, telegraph
+    f) and steers towards the one with the most progress U cos d among those outside the
+    dangerous zones of the guidance, judged from what he observes: the mean relative wave
+    heading β (0 following), the wave period T_W, λ/L and H/L, the roll period T_R of his
+    loading and his speed. With U' = Û f' the speed at telegraph f' (Û the low-passed u/f,
+    time constant ``speed_time_constant_s``) and β' = β − (d' − d) the relative heading on the
+    new course, the zones of a candidate are (deep water, c = g T_W/2π, T_E = T_W/|1 − U' cos
+    β'/c| the encounter period — the guidance's Fig. 1 in our sign of β):
+
+    * §4.2.1 surf-riding and broaching-to: |β'| < 45° (following/quartering) and
+      U' cos β' > 1.8 √L kn;
+    * §4.2.2 successive high-wave attack: λ/L > 0.8, H/L > 0.04 and 1.8 T_W ≤ T_E ≤ 3.0 T_W;
+    * §4.2.3 synchronous rolling, |T_E/T_R − 1| < ``resonance_band``, and parametric rolling,
+      |2 T_E/T_R − 1| < ``resonance_band`` (the guidance says "nearly equal": the band is a
+      tuning choice, ``scripts/tune_capsize_master.py``);
+    * not in the guidance, added because the 6-DOF model broaches and capsizes there: steep
+      waves (H/L > 0.04) from more than ``beam_limit_deg`` off the stern and off the bow.
+
+    ``zone_margin`` m widens the first two zones as a prudent master would: the surf-riding
+    speed becomes (1 − m) 1.8 √L kn and the high-wave band (1 − m) 1.8 … (1 + m) 3.0 T_W.
+
+    The defaults are tuned by ``scripts/tune_capsize_master.py`` (best mean return on training
+    seeds 0–39 of CapsizeAvoidance-v2, 24-point grid; ``docs/benchmarks/capsize_master.json``).
+    On held-out seeds 10 000–10 059 the tuned master capsizes 0/60 (Wilson 95 % [0, 0.06])
+    against 16/60 ([0.17, 0.39]) kept on course and speed, at the same mean return (980 vs
+    978); the guidance read literally (equal weights, no margin, no beam-sea zone) capsizes
+    60/60: it leaves the high-wave zone by turning the steep waves onto the quarter, where
+    this ship broaches.
+
+    If no candidate is safe the one in the least dangerous zones (Σ of ``zone_weights`` of the
+    zones it is in; then the most progress) is taken.
+    The plan is kept until it becomes dangerous or another candidate promises ``switch_margin``
+    more progress (no dithering between near-equal options). Heading set-point and telegraph
+    move towards the plan at their full rates (the scales stated in the action names).
+
+    Parameters
+    ----------
+    resonance_band : float
+        Half-width of the synchronous and parametric zones, relative [-].
+    zone_margin : float
+        Widening of the surf-riding and high-wave zones, relative [-].
+    beam_limit_deg : float
+        Waves (H/L > 0.04) more than this off the stern and the bow are avoided [deg] (90: no
+        such zone).
+    zone_weights : tuple of 5 float
+        Weights of the zones surf-riding, high waves, synchronous, parametric, beam seas [-].
+    max_deviation_deg : float
+        Largest course deviation considered [deg].
+    deviation_step_deg : float
+        Grid step of the course deviations [deg].
+    telegraph_range : tuple of float
+        Telegraph fractions considered (min, max) [× self-propulsion rpm].
+    telegraph_grid : float
+        Grid step of the telegraph [-].
+    switch_margin : float
+        Relative progress gain needed to change a safe plan [-].
+    speed_time_constant_s : float
+        Time constant of the speed-per-telegraph estimate [s].
+    """
+
+    name: ClassVar[str] = "imo-guidance"
+    resonance_band: float = 0.2
+    zone_margin: float = 0.2
+    beam_limit_deg: float = 20.0
+    zone_weights: tuple[float, float, float, float, float] = (3.0, 0.5, 1.0, 1.0, 3.0)
+    max_deviation_deg: float = 90.0
+    deviation_step_deg: float = 10.0
+    telegraph_range: tuple[float, float] = (0.3, 1.2)
+    telegraph_grid: float = 0.05
+    switch_margin: float = 0.05
+    speed_time_constant_s: float = 30.0
+
+    def _bind(self) -> None:
+        lay = self.layout
+        for key, names in {
+            "cos": ("relative wave heading cos",),
+            "sin": ("relative wave heading sin",),
+            "u": ("surge speed",),
+            "period": ("wave period",),
+            "length": ("wavelength / ship length",),
+            "height": ("wave height / ship length",),
+            "roll_period": ("roll natural period",),
+            "deviation": ("heading from voyage course",),
+            "setpoint": ("heading set-point from voyage course",),
+            "telegraph": ("telegraph",),
+        }.items():
+            self._idx[key] = lay.observation(names)
+        self._idx["turn"] = lay.action(("heading set-point change",))
+        self._idx["engine"] = lay.action(("telegraph change",))
+        self._heading_rate = math.radians(
+            _action_scale(lay.action_names[self._idx["turn"]], r"±([0-9.]+) deg", "turn rate")
+        )
+        self._telegraph_step = _action_scale(
+            lay.action_names[self._idx["engine"]], r"±([0-9.]+) ×", "telegraph step"
+        )
+        for key in ("resonance_band", "switch_margin", "zone_margin"):
+            value = getattr(self, key)
+            if not (isinstance(value, int | float) and 0.0 <= value < 1.0):
+                raise ValueError(f"IMOGuidanceMaster.{key} must lie in [0, 1), got {value!r}")
+        if len(self.zone_weights) != 5 or not all(
+            isinstance(x, int | float) and 0.0 <= x < 1e3 for x in self.zone_weights
+        ):
+            raise ValueError(
+                "IMOGuidanceMaster.zone_weights must be 5 weights in [0, 1000), got "
+                f"{self.zone_weights!r}"
+            )
+        if not 0.0 < self.beam_limit_deg <= 90.0:
+            raise ValueError(
+                f"IMOGuidanceMaster.beam_limit_deg must lie in (0, 90], got {self.beam_limit_deg!r}"
+            )
+        step = math.radians(self.deviation_step_deg)
+        top = math.radians(self.max_deviation_deg)
+        k = round(top / step)
+        self._deviations = np.arange(-k, k + 1) * step  # [rad]
+        lo, hi = self.telegraph_range
+        self._fractions = np.arange(lo, hi + 1e-9, self.telegraph_grid)
+
+    def _initial_state(self, n: int) -> NDArray:
+        # columns: planned deviation [rad], planned telegraph [-], speed per telegraph [m/s]
+        return np.zeros((n, 3))
+
+    def dangerous_zones(
+        self, speed: NDArray, beta: NDArray, period: NDArray, length: NDArray, height: NDArray,
+        roll_period: NDArray, lpp: NDArray,
+    ) -> NDArray:  # fmt: skip
+        """Σ of the weights of the dangerous zones a ship is in (0 when safe; class docstring).
+
+        Parameters
+        ----------
+        speed : NDArray
+            Speed U [m/s].
+        beta : NDArray
+            Relative mean wave heading β [rad] (0 following).
+        period, length, height : NDArray
+            T_W [s], λ/L [-] and H/L [-].
+        roll_period : NDArray
+            T_R [s].
+        lpp : NDArray
+            Ship length L [m].
+        """
+        celerity = GRAVITY * period / (2.0 * math.pi)
+        along = speed * np.cos(beta)
+        with np.errstate(divide="ignore"):
+            encounter = period / np.abs(1.0 - along / celerity)
+        m = self.zone_margin
+        quartering = np.abs(beta) < math.radians(45.0)
+        surf = quartering & (along > (1.0 - m) * 1.8 * np.sqrt(lpp) * _KNOT)
+        steep = height > 0.04
+        high_waves = (
+            (length > 0.8)
+            & steep
+            & (encounter >= (1.0 - m) * 1.8 * period)
+            & (encounter <= (1.0 + m) * 3.0 * period)
+        )
+        band = self.resonance_band
+        synchronous = np.abs(encounter / roll_period - 1.0) < band
+        parametric = np.abs(2.0 * encounter / roll_period - 1.0) < band
+        limit = math.radians(self.beam_limit_deg)
+        off_axis = np.minimum(np.abs(beta), math.pi - np.abs(beta))
+        beam = steep & (off_axis > limit) if self.beam_limit_deg < 90.0 else np.zeros_like(steep)
+        w = self.zone_weights
+        return (
+            w[0] * surf + w[1] * high_waves + w[2] * synchronous + w[3] * parametric + w[4] * beam
+        )
+
+    def _law(self, obs: NDArray, state: NDArray | None) -> tuple[NDArray, NDArray | None]:
+        assert state is not None
+        get = self._observed
+        beta = np.arctan2(get(obs, "sin"), get(obs, "cos"))
+        u, f = get(obs, "u"), np.maximum(get(obs, "telegraph"), 1e-3)
+        period, length, height = get(obs, "period"), get(obs, "length"), get(obs, "height")
+        roll_period = np.maximum(get(obs, "roll_period"), 1e-3)
+        deviation, setpoint = get(obs, "deviation"), get(obs, "setpoint")
+        lpp = GRAVITY * period**2 / (2.0 * math.pi) / np.maximum(length, 1e-6)
+        new = state[:, 2] == 0.0  # first step of an episode: plan = what it does now
+        alpha = min(1.0, self.layout.control_dt / self.speed_time_constant_s)
+        per_telegraph = np.where(new, u / f, (1 - alpha) * state[:, 2] + alpha * u / f)
+        plan_d = np.where(new, setpoint, state[:, 0])
+        plan_f = np.where(new, f, state[:, 1])
+        # candidates (N, D, F): speed and relative heading on each course
+        d = self._deviations[None, :, None]
+        fr = self._fractions[None, None, :]
+        speed = per_telegraph[:, None, None] * fr
+        beta_new = beta[:, None, None] - (d - deviation[:, None, None])
+        beta_new = (beta_new + math.pi) % (2 * math.pi) - math.pi
+        zones = self.dangerous_zones(
+            speed, beta_new, period[:, None, None], length[:, None, None],
+            height[:, None, None], roll_period[:, None, None], lpp[:, None, None],
+        )  # fmt: skip
+        progress = speed * np.cos(d)
+        # the best candidate: fewest zones, then most progress
+        score = progress - 1e6 * zones
+        flat = score.reshape(score.shape[0], -1).argmax(axis=1)
+        i_d, i_f = np.unravel_index(flat, score.shape[1:])
+        best_d, best_f = self._deviations[i_d], self._fractions[i_f]
+        rows = np.arange(obs.shape[0])
+        best_zones = zones[rows, i_d, i_f]
+        best_progress = progress[rows, i_d, i_f]
+        # the current plan, judged the same way
+        plan_beta = (beta - (plan_d - deviation) + math.pi) % (2 * math.pi) - math.pi
+        plan_speed = per_telegraph * plan_f
+        plan_zones = self.dangerous_zones(
+            plan_speed, plan_beta, period, length, height, roll_period, lpp
+        )
+        plan_progress = plan_speed * np.cos(plan_d)
+        switch = (best_zones < plan_zones) | (
+            (best_zones == plan_zones)
+            & (best_progress > plan_progress + self.switch_margin * np.abs(plan_progress))
+        )
+        plan_d = np.where(switch, best_d, plan_d)
+        plan_f = np.where(switch, best_f, plan_f)
+        actions = np.zeros((obs.shape[0], len(self.layout.action_names)))
+        actions[:, self._idx["turn"]] = (plan_d - setpoint) / self._heading_rate
+        actions[:, self._idx["engine"]] = (plan_f - f) / self._telegraph_step
+        return actions, np.column_stack([plan_d, plan_f, per_telegraph])
+
+
 BASELINES: Mapping[str, type[Baseline]] = {
-    cls.name: cls for cls in (ZeroAction, PIDAutopilot, RollFinController, RideController)
+    cls.name: cls
+    for cls in (ZeroAction, PIDAutopilot, RollFinController, RideController, IMOGuidanceMaster)
 }
 """Baselines by short name (as used by ``ship-gym evaluate --policies``)."""
 

@@ -29,12 +29,19 @@ Configuration (a TOML file, or the name of one shipped in :mod:`ship_gym.agents.
     torch_threads = 1             # optional: torch CPU threads (small MLPs: 1 is fastest and
                                   #   leaves the cores to the environment)
 
+    [safe]                        # optional: constrained RL on info["cost"] (PPO-Lagrangian)
+    cost_limit = 5.0              # budget of the expected episode cost [control steps]
+    lagrangian_lr = 0.05          # multiplier step; also lambda_init = 0, lambda_max = 100
+
 A relative ``output_dir`` (or ``--output``) is taken from the working directory, whether the
 config is a file or a shipped name. The run directory receives ``model.zip``, ``config.toml`` (a
 copy of the configuration actually used, with command-line overrides), ``vecnormalize.pkl`` when
-``normalize`` is on, the tensorboard logs and ``summary.json`` (time steps, wall time, last mean
-episode return). All files are written atomically. :func:`ship_gym.agents.evaluate.load_policy`
-reads the directory back.
+``normalize`` is on, the tensorboard logs, ``progress.csv`` (the learning curve: after every
+rollout the time steps, wall time, mean return, length and cost of the last 100 episodes, and
+λ) and ``summary.json`` (time steps, wall time, steps/s, last mean episode return and cost,
+final λ). With a ``[safe]`` table the reward is shaped by a Lagrange multiplier on the cost
+(:mod:`ship_gym.agents.lagrangian`). All files are written atomically.
+:func:`ship_gym.envs.saved_policies.load_policy` reads the directory back.
 """
 
 from __future__ import annotations
@@ -49,6 +56,7 @@ from pathlib import Path
 from typing import Any
 
 from ship_gym.agents.configs import find_config
+from ship_gym.agents.lagrangian import SafeConfig, safe_config
 
 __all__ = ["TrainConfig", "load_config", "make_training_env", "train"]
 
@@ -77,6 +85,7 @@ class TrainConfig:
     tensorboard: bool = True
     device: str = "cpu"
     torch_threads: int | None = None
+    safe: SafeConfig | None = None
     raw: Mapping[str, Any] = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
@@ -107,6 +116,7 @@ class TrainConfig:
 _KNOWN = {
     "env": {"id", "n_envs", "vectorization", "normalize", "kwargs"},
     "algorithm": {"name", "policy", "hyperparameters", "policy_kwargs"},
+    "safe": {"cost_limit", "lagrangian_lr", "lambda_init", "lambda_max"},
     "training": {
         "total_timesteps",
         "seed",
@@ -154,6 +164,7 @@ def config_from_mapping(data: Mapping[str, Any]) -> TrainConfig:
         tensorboard=bool(training.get("tensorboard", True)),
         device=str(training.get("device", "cpu")),
         torch_threads=training.get("torch_threads"),
+        safe=safe_config(data["safe"]) if "safe" in data else None,
         raw=copy.deepcopy(dict(data)),
     )
 
@@ -198,6 +209,10 @@ def make_training_env(config: TrainConfig) -> Any:
         vectorization=config.vectorization,
         env_kwargs=dict(config.env_kwargs),
     )
+    if config.safe is not None:  # r − λc, between the monitor (true returns) and the normaliser
+        from ship_gym.agents.lagrangian import make_cost_shaped
+
+        venv = make_cost_shaped(venv, config.safe.lambda_init)
     if config.normalize:
         # the reward normaliser discounts with the algorithm's gamma (SB3 default 0.99)
         venv = VecNormalize(venv, gamma=float(config.hyperparameters.get("gamma", 0.99)))
@@ -236,6 +251,67 @@ def dump_toml(data: Mapping[str, Any]) -> str:
     return "\n".join(lines).strip() + "\n"
 
 
+def learning_curve_callback() -> Any:
+    """An SB3 callback recording the learning curve after every rollout: time steps, wall time
+    [s], and the mean return, length and cost of the last 100 finished episodes (SB3's episode
+    buffer, true rewards from the monitor), λ of a cost-shaped run (else 0). ``csv()`` gives
+    the table."""
+    from stable_baselines3.common.callbacks import BaseCallback
+
+    class _Curve(BaseCallback):
+        def __init__(self) -> None:
+            super().__init__()
+            self.rows: list[dict[str, float]] = []
+            self._t0 = time.perf_counter()
+            self._costs: list[float] = []
+            self._running: Any = None
+
+        def _on_step(self) -> bool:
+            import numpy as np
+
+            infos, dones = self.locals.get("infos", []), self.locals.get("dones")
+            if dones is None:
+                return True
+            if self._running is None:
+                self._running = np.zeros(len(dones))
+            self._running += [float(info.get("cost", 0.0)) for info in infos]
+            for i in np.flatnonzero(dones):
+                self._costs.append(float(self._running[i]))
+                self._running[i] = 0.0
+            self._costs = self._costs[-100:]
+            return True
+
+        def _on_rollout_end(self) -> None:
+            episodes = list(self.model.ep_info_buffer or [])
+            if not episodes:
+                return
+            env: Any = self.training_env
+            lam = 0.0
+            while env is not None:
+                if hasattr(env, "multiplier"):
+                    lam = float(env.multiplier)
+                    break
+                env = getattr(env, "venv", None)
+            self.rows.append(
+                {
+                    "timesteps": float(self.num_timesteps),
+                    "wall_s": time.perf_counter() - self._t0,
+                    "mean_return": sum(e["r"] for e in episodes) / len(episodes),
+                    "mean_length": sum(e["l"] for e in episodes) / len(episodes),
+                    "mean_cost": sum(self._costs) / len(self._costs) if self._costs else 0.0,
+                    "lambda": lam,
+                }
+            )
+
+        def csv(self) -> str:
+            keys = ("timesteps", "wall_s", "mean_return", "mean_length", "mean_cost", "lambda")
+            lines = [",".join(keys)]
+            lines += [",".join(f"{row[k]:.10g}" for k in keys) for row in self.rows]
+            return "\n".join(lines) + "\n"
+
+    return _Curve()
+
+
 def train(config: TrainConfig) -> Path:
     """Train per ``config``; return the run directory (see the module docstring for its files)."""
     import stable_baselines3
@@ -264,18 +340,26 @@ def train(config: TrainConfig) -> Path:
         tensorboard_log=str(out / "tensorboard") if config.tensorboard else None,
         **kwargs,
     )
+    callbacks = []
+    if config.safe is not None:  # first: the curve records the λ of this rollout's update
+        from ship_gym.agents.lagrangian import lagrange_multiplier_callback
+
+        callbacks.append(lagrange_multiplier_callback(config.safe))
+    callbacks.append(curve := learning_curve_callback())
     t0 = time.perf_counter()
     try:
         model.learn(
             total_timesteps=config.total_timesteps,
             progress_bar=config.progress_bar,
             tb_log_name=config.algorithm.lower(),
+            callback=callbacks,
         )
     finally:
         wall = time.perf_counter() - t0
         atomic_write(out / "model.zip", lambda p: model.save(p))
         if isinstance(venv, VecNormalize):
             atomic_write(out / "vecnormalize.pkl", lambda p: venv.save(str(p)))
+        atomic_write_text(out / "progress.csv", curve.csv())
         episodes = list(model.ep_info_buffer or [])
         summary = {
             "env_id": config.env_id,
@@ -290,6 +374,8 @@ def train(config: TrainConfig) -> Path:
             "recent_mean_length": (
                 float(sum(e["l"] for e in episodes) / len(episodes)) if episodes else None
             ),
+            "recent_mean_cost": curve.rows[-1]["mean_cost"] if curve.rows else None,
+            "final_lambda": curve.rows[-1]["lambda"] if curve.rows else None,
         }
         atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
         venv.close()

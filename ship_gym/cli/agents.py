@@ -1,9 +1,11 @@
-"""``ship-gym train`` and ``ship-gym evaluate``: reinforcement learning on the ship_gym envs.
+"""``ship-gym train``, ``evaluate`` and ``benchmark``: reinforcement learning on the ship_gym envs.
 
 ``train CONFIG`` trains a stable-baselines3 agent from a TOML configuration: a path, or the name
 of a config shipped in :mod:`ship_gym.agents` (``ppo_roll_one_dof``, …; see
 :mod:`ship_gym.agents.train`). ``evaluate`` runs classical baselines and saved models on the same
 seeded seas and writes a table, JSON and a bar chart (:mod:`ship_gym.agents.evaluate`).
+``benchmark`` trains the shipped configs with several seeds and compares them with the tasks'
+strongest classical baselines on held-out seeds (:mod:`ship_gym.agents.benchmark`).
 stable-baselines3 and torch are imported inside the commands, so ``ship-gym --help`` stays
 instant; they need the ``agents`` extra (``pip install -e .[agents]``).
 """
@@ -82,6 +84,53 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         "(by default a model's training [env] kwargs are applied, then --set)",
     )
     p.set_defaults(func=_cmd_evaluate)
+
+    from ship_gym.agents.benchmark import TASKS
+
+    p = sub.add_parser(
+        "benchmark",
+        help="train the shipped configs (several seeds) and compare them with the strongest "
+        "classical baselines on held-out seeds",
+    )
+    p.add_argument(
+        "--tasks",
+        default="CourseKeeping,RollStabilization,RideControl,CapsizeAvoidance",
+        help="comma-separated, of " + ", ".join(TASKS),
+    )
+    p.add_argument("--seeds", type=count, default=3, help="training seeds per config")
+    p.add_argument("--timesteps", type=count, default=None, help="override each config's budget")
+    p.add_argument("--episodes", type=count, default=40, help="held-out episodes per policy")
+    p.add_argument("--seed", type=seed, default=10_000, help="first held-out seed")
+    p.add_argument("--out", default="docs/benchmarks", help="output folder")
+    p.add_argument("--no-progress", action="store_true", help="no progress bars")
+    p.set_defaults(func=_cmd_benchmark)
+
+
+def _cmd_benchmark(args: argparse.Namespace) -> int:
+    from ship_gym.agents.benchmark import TASKS, run_benchmark
+
+    tasks = [t.strip() for t in args.tasks.split(",") if t.strip()]
+    unknown = [t for t in tasks if t not in TASKS]
+    if not tasks or unknown:
+        raise CLIError(
+            f"--tasks {args.tasks!r}: {'unknown ' + repr(unknown[0]) if unknown else 'empty'}; "
+            f"expected comma-separated names of {', '.join(TASKS)}"
+        )
+    prepare_output_dir(args.out, "--out")
+    try:
+        run_benchmark(
+            tasks,
+            args.out,
+            n_seeds=args.seeds,
+            timesteps=args.timesteps,
+            episodes=args.episodes,
+            seed=args.seed,
+            progress=not args.no_progress,
+        )
+    except ValueError as exc:
+        raise CLIError(str(exc)) from None
+    print(f"wrote {Path(args.out) / 'results.md'}")
+    return 0
 
 
 def _cmd_train(args: argparse.Namespace) -> int:

@@ -1,11 +1,15 @@
-"""``ship_gym/CapsizeAvoidance-v1``: make way in steep following seas without capsizing.
+"""``ship_gym/CapsizeAvoidance-v2``: make way in steep following seas without capsizing.
 
 Matusiak's capsize scenario (Matusiak 2003, "Importance of memory effect for capsizing
 prediction": regular waves λ = 1.5 L, amplitude 4.5 m for L = 150 m, Fn 0.2–0.4, headings 0–45°
 off following seas; the A-1 container ship capsized at Fn 0.4, 30°) on the S175, scaled with
 length (amplitude 5.25 m, H ≈ 10.5 m, λ ≈ 262 m). The heading autopilot steers; the agent
-changes its set-point and the engine telegraph. The task (:class:`CapsizeAvoidanceTask`) runs on
-:class:`ship_gym.envs.env_task.ShipEnvTask`.
+changes its set-point and the engine telegraph, seeing the sea state as the officer of the watch
+estimates it (wave period, λ/L, H/L) and the roll period of the loading — what the IMO guidance
+to the master (MSC.1/Circ.1228) asks him to watch. Kept on course and speed (zero action) the ship
+capsizes in about a third of the default episodes (35 % [24 %, 48 %], Wilson 95 %, 60 episodes
+of 750 s, seeds 5000–5059): the task holds a real dilemma between progress and survival. The
+task (:class:`CapsizeAvoidanceTask`) runs on :class:`ship_gym.envs.env_task.ShipEnvTask`.
 """
 
 from __future__ import annotations
@@ -21,11 +25,11 @@ from numpy.typing import NDArray
 from ship_gym.conventions import GRAVITY
 from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
-from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
+from ship_gym.envs.docstrings import VERSION_HISTORY, env_docstring, vector_env_docstring
 from ship_gym.envs.env_task import S175_MESH, ShipEnvTask, ship_kwargs, ship_particulars
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.seas import SeaSampler
-from ship_gym.envs.ship_task import StepStatistics, write_heading_observations
+from ship_gym.envs.ship_task import StepStatistics
 from ship_gym.envs.validation import check_positive, check_range, check_real, check_weight
 from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.typing import IntegratorName, Precision
@@ -38,6 +42,7 @@ __all__ = [
 ]
 
 MAX_EPISODE_STEPS = max_episode_steps("CapsizeAvoidance")
+_KNOT = 1852.0 / 3600.0  # [m/s]
 """Time limit in control steps, from the registration (750 s at the default control_dt;
 Matusiak ran 720 s)."""
 
@@ -61,21 +66,36 @@ def _along_course_kernel(eta, origin, cos_c, sin_c, weight, scale, out):  # prag
 
 @numba.njit(cache=True, nogil=True)
 def _apply_actions_kernel(
-    actions, heading_rate, course, max_deviation, lo, hi, nominal, max_change,
-    setpoint, heading_command, shaft_target, shaft_speed,
+    actions, heading_rate, course, max_deviation, lo, hi, telegraph_step, nominal, max_change,
+    setpoint, heading_command, telegraph, shaft_speed,
 ):  # fmt: skip  # pragma: no cover - compiled
     """Per episode: ψ_ref ← course + clip(wrap(ψ_ref + a₀ · rate − course), ±max deviation);
-    target shaft speed ← (lo + (a₁ + 1)/2 · (hi − lo)) · nominal; shaft speed ← the target
-    clipped to ± ``max_change`` of the current one (the NumPy expressions' operations)."""
+    telegraph f ← clip(f + a₁ · step, lo, hi) (× the self-propulsion rpm); shaft speed ← f ·
+    nominal clipped to ± ``max_change`` of the current one."""
     for i in range(actions.shape[0]):
         dev = wrap_angle_scalar(setpoint[i] + actions[i, 0] * heading_rate - course)
         dev = clip_scalar_bound(dev, -max_deviation, max_deviation)
         setpoint[i] = course + dev
         heading_command[i] = setpoint[i]
-        fraction = lo + 0.5 * (actions[i, 1] + 1.0) * (hi - lo)
-        shaft_target[i] = fraction * nominal
+        telegraph[i] = clip_scalar_bound(telegraph[i] + actions[i, 1] * telegraph_step, lo, hi)
         n = shaft_speed[i]
-        shaft_speed[i] = clip_array_bound(shaft_target[i], n - max_change, n + max_change)
+        target = telegraph[i] * nominal
+        shaft_speed[i] = clip_array_bound(target, n - max_change, n + max_change)
+
+
+@numba.njit(cache=True, nogil=True)
+def _write_observations_kernel(
+    psi, setpoint, course, telegraph, period, wavelength_ratio, height_ratio, roll_period, out,
+):  # fmt: skip  # pragma: no cover - compiled
+    """The task observations [wrap(ψ − course), wrap(ψ_ref − course), f, T_W, λ/L, H/L, T_R]."""
+    for i in range(psi.shape[0]):
+        out[i, 0] = wrap_angle_scalar(psi[i] - course)
+        out[i, 1] = wrap_angle_scalar(setpoint[i] - course)
+        out[i, 2] = telegraph[i]
+        out[i, 3] = period[i]
+        out[i, 4] = wavelength_ratio[i]
+        out[i, 5] = height_ratio[i]
+        out[i, 6] = roll_period[i]
 
 
 class CapsizeAvoidanceTask(ShipEnvTask):
@@ -87,7 +107,7 @@ class CapsizeAvoidanceTask(ShipEnvTask):
         *,
         ship: str = "s175",
         froude_number: float = 0.35,
-        froude_range: tuple[float, float] | None = (0.3, 0.4),
+        froude_range: tuple[float, float] | None = (0.25, 0.35),
         sea_kind: Literal["regular", "irregular"] = "regular",
         wave_height_range_m: tuple[float, float] | None = None,
         wavelength_ratio_range: tuple[float, float] = (1.4, 1.6),
@@ -99,6 +119,7 @@ class CapsizeAvoidanceTask(ShipEnvTask):
         heading_rate_deg: float = 2.0,
         max_course_deviation_deg: float = 90.0,
         shaft_speed_range: tuple[float, float] = (0.3, 1.2),
+        telegraph_step: float = 0.02,
         shaft_rate_per_s: float = 0.01,
         physics_dt_s: float = 0.1,
         control_dt_s: float = 0.5,
@@ -143,6 +164,7 @@ class CapsizeAvoidanceTask(ShipEnvTask):
         if hi <= lo:
             raise ValueError(f"shaft_speed_range must have min < max, got {shaft_speed_range!r}")
         self.shaft_fraction_range = (lo, hi)
+        self.telegraph_step = check_positive("telegraph_step", telegraph_step, "-", 1.0)
         self.shaft_rate = check_positive("shaft_rate_per_s", shaft_rate_per_s, "1/s", 10.0)
         if froude_range is not None:
             froude_range = check_range("froude_range", froude_range, low=0.05, high=0.5, unit="-")
@@ -150,7 +172,8 @@ class CapsizeAvoidanceTask(ShipEnvTask):
         self.danger_weight = check_weight("danger_weight", danger_weight)
         self.action_names = (
             f"heading set-point change (-1..1 = ±{heading_rate_deg:g} deg per step)",
-            f"telegraph (-1..1 = {lo:g}..{hi:g} × self-propulsion rpm at Fn {froude_number:g})",
+            f"telegraph change (-1..1 = ±{telegraph_step:g} × self-propulsion rpm at Fn "
+            f"{froude_number:g} per step, within {lo:g}..{hi:g})",
         )
         sea = SeaSampler(
             kind=sea_kind,
@@ -184,18 +207,44 @@ class CapsizeAvoidanceTask(ShipEnvTask):
             extra_observations=(
                 ("heading from voyage course [rad]", -math.pi, math.pi),
                 ("heading set-point from voyage course [rad]", -math.pi, math.pi),
-                ("telegraph shaft speed [rev/s]", 0.0, 20.0),
+                ("telegraph [× self-propulsion rpm]", 0.0, 2.0),
+                ("wave period [s]", 0.0, 60.0),
+                ("wavelength / ship length [-]", 0.0, 20.0),
+                ("wave height / ship length [-]", 0.0, 0.5),
+                ("roll natural period [s]", 0.0, 100.0),
             ),
             **ship_kwargs(args),
         )
-        self.shaft_target = self.commands["shaft_speed"].copy()
+        n = self.num_envs
+        self.lpp = lpp
+        self.telegraph = np.ones(n)  # [× self-propulsion rpm at froude_number]
         self.voyage_course = 0.0  # [rad], the initial heading (north)
-        self._origin = np.zeros((self.num_envs, 2))
+        self._origin = np.zeros((n, 2))
+        self._wave_period = np.zeros(n)
+        self._wavelength_ratio = np.zeros(n)
+        self._height_ratio = np.zeros(n)
+        self._roll_period = np.zeros(n)
+        self._nominal_roll_period = self._loading_roll_period()
+
+    def _loading_roll_period(self) -> float:
+        """Undamped roll natural period T_R = 2π/ω_φ [s] of the nominal loading (its own
+        stiffness and inertia, A44 at ω_φ: :func:`ship_gym.engine.ship.roll_natural_frequency`)."""
+        from ship_gym.engine.ship import database_of, roll_natural_frequency
+
+        return 2.0 * math.pi / roll_natural_frequency(self.sim.hull, database_of(self.setup))
 
     # ------------------------------------------------------------------ hooks
     def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
-        self.shaft_target[i] = self.commands["shaft_speed"][i]
-        return {}
+        self.telegraph[i] = self.commands["shaft_speed"][i] / self._nominal_shaft_speed
+        info = self._reset_infos[i]
+        period = info["wave_period_s"]
+        self._wave_period[i] = period
+        self._wavelength_ratio[i] = GRAVITY * period**2 / _TWO_PI / self.lpp
+        self._height_ratio[i] = info["wave_height_m"] / self.lpp
+        # G moved vertically: C44 ∝ GM, the inertia nearly unchanged (the master's estimate)
+        gm0 = self.loading.gm
+        self._roll_period[i] = self._nominal_roll_period * math.sqrt(gm0 / self.gm[i])
+        return {"roll_period_s": float(self._roll_period[i])}
 
     def _apply_actions(self, actions: NDArray) -> None:
         lo, hi = self.shaft_fraction_range
@@ -206,16 +255,27 @@ class CapsizeAvoidanceTask(ShipEnvTask):
             self.max_course_deviation,
             lo,
             hi,
+            self.telegraph_step,
             self._nominal_shaft_speed,
             self.shaft_rate * self._nominal_shaft_speed * self.control_dt,
             self.heading_setpoint,
             self.commands["heading"],
-            self.shaft_target,
+            self.telegraph,
             self.commands["shaft_speed"],
         )
 
     def _write_extra_observations(self, out: NDArray) -> None:
-        write_heading_observations(self, self.voyage_course, self.shaft_target, out)
+        _write_observations_kernel(
+            self.sim.eta[:, 5],
+            self.heading_setpoint,
+            float(self.voyage_course),
+            self.telegraph,
+            self._wave_period,
+            self._wavelength_ratio,
+            self._height_ratio,
+            self._roll_period,
+            out,
+        )
 
     def _along_course(self, origin: NDArray, weight: float, scale: float) -> NDArray:
         """weight · (distance of O from ``origin`` along the voyage course) / scale, (N,)."""
@@ -255,6 +315,7 @@ _ARGUMENTS: dict[str, tuple[str, str]] = {
     "heading_rate_deg": ("deg", "set-point change per step at a = ±1"),
     "max_course_deviation_deg": ("deg", "largest set-point deviation from the course"),
     "shaft_speed_range": ("-", "telegraph range, × self-propulsion rpm"),
+    "telegraph_step": ("-", "telegraph change per step at a = ±1, × self-propulsion rpm"),
     "shaft_rate_per_s": ("1/s", "shaft acceleration, × self-propulsion rpm per s"),
     "dangerous_roll_deg": ("deg", "roll angle of the cost and the danger term"),
     "progress_weight": ("-", "weight of the progress term"),
@@ -262,7 +323,18 @@ _ARGUMENTS: dict[str, tuple[str, str]] = {
 }
 
 
-@env_docstring(_ARGUMENTS)
+@env_docstring(
+    _ARGUMENTS,
+    (
+        *VERSION_HISTORY,
+        "v2: a dilemma by default — initial Fn 0.25–0.35 (v1: 0.3–0.4), where kept on course and "
+        "speed the S175 capsizes in 35 % [24 %, 48 %] of the episodes (v1's defaults, Fn "
+        "0.3–0.4 with an absolute telegraph whose zero meant 0.75 × rpm, mixed the two); the "
+        "telegraph action is a change per step (zero action = keep course and speed); the sea "
+        "state as observed (T_W, λ/L, H/L) and the loading's roll period T_R are observed, "
+        "the telegraph as a fraction of the self-propulsion rpm.",
+    ),
+)
 class CapsizeAvoidanceEnv(TaskEnv):
     """Make way along a voyage course in steep following seas without capsizing the S175.
 
@@ -271,14 +343,18 @@ class CapsizeAvoidanceEnv(TaskEnv):
     Matusiak's capsize scenario (Matusiak 2003: regular waves of length 1.5 L and amplitude
     4.5 m for L = 150 m, Froude numbers 0.2–0.4, headings 0–45° off following seas; the model
     capsized at Fn 0.4, 30°) on the ITTC S175 container ship, scaled with length: λ ≈ 1.5 ×
-    175 m, H ≈ 10.5 m (steepness ≈ 1/25), Fn 0.3–0.4. The 6-DOF model (nonlinear Froude–Krylov
-    and hydrostatics on the wetted hull, radiation memory, diffraction, Ikeda roll damping,
-    resistance, propeller, manoeuvring forces) is steered by a PID heading autopilot (tuned on
-    the Nomoto model identified for the hull) acting on a rudder behind its servo. The agent
-    changes the autopilot's heading set-point and the engine telegraph; it is rewarded for
+    175 m, H ≈ 10.5 m (steepness ≈ 1/25), Fn 0.25–0.35. The 6-DOF model (nonlinear
+    Froude–Krylov and hydrostatics on the wetted hull, radiation memory, diffraction, Ikeda roll
+    damping, resistance, propeller, manoeuvring forces) is steered by a PID heading autopilot
+    (tuned on the Nomoto model identified for the hull) acting on a rudder behind its servo. The
+    agent changes the autopilot's heading set-point and the engine telegraph; it is rewarded for
     progress along the voyage course (north, the initial heading) and penalised for dangerous
-    roll and for capsizing. Slowing down or turning away from the waves reduces the risk of
-    pure-loss-of-stability capsize and broaching, at the cost of progress.
+    roll and for capsizing. Kept on course and speed (the zero action) the ship capsizes in
+    about a third of the default episodes, mostly in stern-quartering seas; slowing down, or
+    turning towards following seas or away from the waves, lowers the risk of pure loss of
+    stability on the crest, broaching and resonant rolling at a cost in progress — the
+    dangerous zones the IMO guidance to the master (MSC.1/Circ.1228) describes
+    (:class:`ship_gym.agents.baselines.IMOGuidanceMaster` follows it).
 
     ## Action Space
 
@@ -286,9 +362,11 @@ class CapsizeAvoidanceEnv(TaskEnv):
 
     * ``a[0]`` — heading set-point change ψ_ref += a · ``heading_rate_deg`` per control step,
       with |ψ_ref − voyage course| ≤ ``max_course_deviation_deg``;
-    * ``a[1]`` — telegraph: target shaft speed = (lo + (a + 1)/2 (hi − lo)) × the calm-water
-      self-propulsion shaft speed at ``froude_number`` (``shaft_speed_range`` = (lo, hi)); the
-      shaft speed follows at ≤ ``shaft_rate_per_s`` × that shaft speed per second.
+    * ``a[1]`` — telegraph change f += a · ``telegraph_step`` per control step, f within
+      ``shaft_speed_range``, f the target shaft speed as a fraction of the calm-water
+      self-propulsion shaft speed at ``froude_number``; the shaft speed follows at ≤
+      ``shaft_rate_per_s`` × that shaft speed per second. The episode starts with f at the
+      self-propulsion rpm of its initial speed.
 
     ## Observation Space
 
@@ -297,8 +375,12 @@ class CapsizeAvoidanceEnv(TaskEnv):
     {ship_observations}
     | 14 | heading ψ from the voyage course (wrapped) | rad | ±π |
     | 15 | heading set-point from the voyage course (wrapped) | rad | ±π |
-    | 16 | telegraph target shaft speed | rev/s | 0 … 20 |
-    | 17… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
+    | 16 | telegraph f | × self-propulsion rpm | 0 … 2 |
+    | 17 | wave period T_W as observed (T of a regular wave, Tp of a spectrum) | s | 0 … 60 |
+    | 18 | λ/L, λ = g T_W²/2π (deep water) | - | 0 … 20 |
+    | 19 | H/L (H of a regular wave, Hs of a spectrum) | - | 0 … 0.5 |
+    | 20 | roll natural period T_R of the episode's loading (T_R,nom √(GM_nom/GM)) | s | 0 … 100 |
+    | 21… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
 
     ## Rewards
 
@@ -310,15 +392,17 @@ class CapsizeAvoidanceEnv(TaskEnv):
       ``dangerous_roll_deg``;
     * ``capsize`` = −capsize_penalty in the step the ship capsizes.
 
-    ``info["cost"]`` (Safe RL) is the dangerous-roll fraction.
+    ``info["cost"]`` (Safe RL, :mod:`ship_gym.envs.ship_task`) is the fraction of the step's
+    physics steps with |φ| above ``dangerous_roll_deg``, 1 in the step that capsizes.
 
     ## Starting State
 
     Free-floating equilibrium heading north (the voyage course) at a speed uniform in
-    ``froude_range`` (shaft at its self-propulsion rpm), autopilot set-point on the course. Per
-    episode, from the reset seed: wave height, wavelength (period) and relative heading β
-    (uniform in the ranges), the phase (regular) or components (irregular), optionally the
-    loading's GM. The waves ramp up over ``wave_ramp_time_s`` (Matusiak eq. 12, T_f = 50 s).
+    ``froude_range`` (shaft and telegraph at its self-propulsion rpm), autopilot set-point on
+    the course. Per episode, from the reset seed: wave height, wavelength (period) and relative
+    heading β (uniform in the ranges), the phase (regular) or components (irregular),
+    optionally the loading's GM. The waves ramp up over ``wave_ramp_time_s`` (Matusiak eq. 12,
+    T_f = 50 s).
 
     ## Episode End
 

@@ -207,8 +207,9 @@ class CourseKeepingEnv(TaskEnv):
     * ``roll`` = −roll_weight · mean(φ²)/roll_scale² over the physics steps of the control step;
     * ``capsize`` = −capsize_penalty in the step the ship capsizes.
 
-    ``info["cost"]`` (Safe RL) is the fraction of the physics steps with |φ| above
-    ``dangerous_roll_deg``.
+    ``info["cost"]`` (Safe RL, one meaning in every ship env: :mod:`ship_gym.envs.ship_task`) is
+    the fraction of the step's physics steps with |φ| above ``dangerous_roll_deg``, 1 in the
+    step that capsizes.
 
     ## Starting State
 

@@ -171,15 +171,19 @@ def _fill(doc: str, marker: str, text: str) -> str:
 _EnvType = TypeVar("_EnvType", bound="type[TaskEnv]")
 
 
+VERSION_HISTORY: tuple[str, ...] = (
+    "v0: initial version.",
+    "v1: one compiled engine call per control step; servos sampled at each physics step "
+    "and advanced by the exact solution of their lag and rate limit (v0 integrated them as "
+    "ODE states: under Holloway's scheme a constant command cycled); float32 wave sums by "
+    "default (docs/accuracy/results.md: ≤ 3e-5 % on every motion statistic).",
+)
+"""The version history every ship environment shares (an env appends its own lines)."""
+
+
 def env_docstring(
     arguments: Mapping[str, tuple[str, str]] | None = None,
-    version_history: Sequence[str] = (
-        "v0: initial version.",
-        "v1: one compiled engine call per control step; servos sampled at each physics step "
-        "and advanced by the exact solution of their lag and rate limit (v0 integrated them as "
-        "ODE states: under Holloway's scheme a constant command cycled); float32 wave sums by "
-        "default (docs/accuracy/results.md: ≤ 3e-5 % on every motion statistic).",
-    ),
+    version_history: Sequence[str] = VERSION_HISTORY,
 ) -> Callable[[_EnvType], _EnvType]:
     """Class decorator completing a ship environment's Gymnasium v5 docstring.
 

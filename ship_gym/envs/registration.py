@@ -62,7 +62,7 @@ ENTRIES: tuple[EnvEntry, ...] = (
     EnvEntry("CourseKeeping", "course_keeping", 1000, 1),
     EnvEntry("RollStabilization", "roll_stabilisation", 1000, 1),
     EnvEntry("RideControl", "ride_control", 1000, 1),
-    EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500, 1),
+    EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500, 2),
     EnvEntry("RollOneDOF", "roll_one_dof", 1000, 0),
 )
 ENV_IDS: tuple[str, ...] = tuple(e.id for e in ENTRIES)

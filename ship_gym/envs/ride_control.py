@@ -194,7 +194,9 @@ class RideControlEnv(TaskEnv):
     * ``effort`` = −effort_weight · (δ_foil/15°)²;
     * ``capsize`` = −capsize_penalty in the step the ship capsizes.
 
-    ``info["cost"]`` (Safe RL) is 1 while the running RMS (τ = ``comfort_time_constant_s``) of
+    ``info["cost"]`` (Safe RL, the fraction of the step in violation of the task's constraints,
+    as in every ship env: :mod:`ship_gym.envs.ship_task`) is 1 in the step that capsizes and
+    while the running RMS (τ = ``comfort_time_constant_s``) of
     the vertical acceleration at the passenger exceeds ``vertical_rms_limit_g`` · g (0.05 g is
     NORDFORSK's 1987 limit for passenger ships), otherwise the fraction of the physics steps
     with |φ| above ``dangerous_roll_deg``. Further info: ``t_foil_angle_deg``,

@@ -336,8 +336,9 @@ class RollStabilizationEnv(TaskEnv):
       (e/heading_scale)²;
     * ``capsize`` = −capsize_penalty in the step the ship capsizes.
 
-    ``info["cost"]`` (Safe RL) is the fraction of the physics steps with |φ| above
-    ``dangerous_roll_deg``. Further info: ``fin_angle_deg``, ``heading_error_deg``,
+    ``info["cost"]`` (Safe RL, one meaning in every ship env: :mod:`ship_gym.envs.ship_task`) is
+    the fraction of the step's physics steps with |φ| above ``dangerous_roll_deg``, 1 in the
+    step that capsizes. Further info: ``fin_angle_deg``, ``heading_error_deg``,
     ``lateral_acceleration_mps2``, ``vertical_acceleration_mps2`` (earth-vertical at the
     passenger), their running RMS (τ = ``comfort_time_constant_s``), ``msdv_z`` (ISO 2631-1
     motion sickness dose value of the episode so far [m/s^1.5]) and ``msi_percent`` (MSDV_z/3).

@@ -28,8 +28,12 @@ Python loop in :meth:`ShipTask.step`):
   by ΔKG sin φ for a moved G), or a fixed angle given as a keyword argument; checked at every
   physics step. A ship whose integration diverges (BatchSimulator freezes it) is also
   terminated, as a capsize, with ``info["diverged"]``; stepping it again never raises;
-* **Safe-RL cost** — the fraction of the physics steps of a control step with |φ| above the
-  dangerous roll angle (0 … 1);
+* **Safe-RL cost** — one meaning in every ship environment: ``info["cost"]`` ∈ [0, 1] is the
+  fraction of the control step spent violating the task's safety constraints, 1 in the step
+  that capsizes; so an episode's summed cost is its time in violation [control steps]. The
+  constraint of every ship task is |φ| ≤ the dangerous roll angle (the fraction of the physics
+  steps above it); a task may add its own (RideControl: the running RMS vertical acceleration
+  at the passenger point below its limit);
 * **observations** — float32, names with units (:attr:`ShipTask.observation_names`), clipped to
   the documented bounds of the space, optional Gaussian sensor noise (from the episode's
   generator) and optional wave preview (incident elevation at points ahead of O along the
@@ -202,7 +206,7 @@ def _step_kernel(
         mean_square[i] = sum_sq[i] / substeps
         f = danger[i] / substeps
         danger_fraction[i] = f
-        cost[i] = f
+        cost[i] = 1.0 if newly[i] else f
         episode_steps[i] += 1
         heading_error[i] = wrap_angle_scalar(heading_setpoint[i] - eta[i, 5])
         roll_deg[i] = eta[i, 3] * _RAD2DEG

@@ -15,6 +15,7 @@ from ship_gym.envs import ENV_IDS
 SHIPPED = [
     "ppo_capsize_avoidance",
     "ppo_course_keeping",
+    "ppo_lagrangian_capsize_avoidance",
     "ppo_roll_one_dof",
     "ppo_roll_stabilization",
     "sac_ride_control",

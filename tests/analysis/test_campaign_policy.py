@@ -37,11 +37,11 @@ ramp_s = 5.0
 
 @pytest.fixture(scope="module")
 def run_dir(tmp_path_factory) -> Path:
-    """A (barely) trained PPO on CapsizeAvoidance-v1, saved with its config.toml."""
+    """A (barely) trained PPO on CapsizeAvoidance-v2, saved with its config.toml."""
     out = tmp_path_factory.mktemp("ppo") / "run"
     config = config_from_mapping(
         {
-            "env": {"id": "ship_gym/CapsizeAvoidance-v1", "n_envs": 1, "normalize": True},
+            "env": {"id": "ship_gym/CapsizeAvoidance-v2", "n_envs": 1, "normalize": True},
             "algorithm": {
                 "name": "PPO",
                 "hyperparameters": {"n_steps": 32, "batch_size": 32, "n_epochs": 1},
@@ -67,12 +67,12 @@ def _campaign(tmp_path: Path, run: Path, headings="[180, 60]", angle="60.0") -> 
 
 def test_policy_cells_run_the_training_env_with_the_cells_sea(run_dir, tmp_path):
     spec = cp.read_campaign(_campaign(tmp_path, run_dir))
-    assert spec.policy is not None and spec.policy.env_id == "ship_gym/CapsizeAvoidance-v1"
+    assert spec.policy is not None and spec.policy.env_id == "ship_gym/CapsizeAvoidance-v2"
     res = cp.run_campaign(spec, tmp_path / "store", progress=False)
     assert res.n_run == 4
     by_heading = {}
     for r in res.records:
-        assert r["engine"] == "env:ship_gym/CapsizeAvoidance-v1" and r["batch_size"] == 2
+        assert r["engine"] == "env:ship_gym/CapsizeAvoidance-v2" and r["batch_size"] == 2
         assert r["controller"] == "policy:" + str(run_dir / "model.zip")
         assert r["simulated_time_s"] == pytest.approx(20.0) and not r["capsized"]
         # the cell's speed is the initial speed (Fn 0.3 of the S175: 12.43 m/s)

@@ -67,7 +67,7 @@ class _ReferenceStep:
         }
         return TaskStep(
             reward_terms=terms,
-            cost=stats.danger_fraction.copy(),
+            cost=np.where(stats.newly_capsized, 1.0, stats.danger_fraction),
             terminated=stats.capsized.copy(),
             info=info,
         )
@@ -235,18 +235,22 @@ class ReferenceCapsizeAvoidanceTask(_ReferenceStep, CapsizeAvoidanceTask):
         self.heading_setpoint[:] = self.voyage_course + dev
         self.commands["heading"][:] = self.heading_setpoint
         lo, hi = self.shaft_fraction_range
-        fraction = lo + 0.5 * (actions[:, 1] + 1.0) * (hi - lo)
-        self.shaft_target[:] = fraction * self._nominal_shaft_speed
+        np.clip(self.telegraph + actions[:, 1] * self.telegraph_step, lo, hi, out=self.telegraph)
+        target = self.telegraph * self._nominal_shaft_speed
         step = self.shaft_rate * self._nominal_shaft_speed * self.control_dt
         n = self.commands["shaft_speed"]
-        np.clip(self.shaft_target, n - step, n + step, out=n)
+        np.clip(target, n - step, n + step, out=n)
 
     def _extra_observations(self):
         return np.column_stack(
             [
                 _wrap(self.sim.eta[:, 5] - self.voyage_course),
                 _wrap(self.heading_setpoint - self.voyage_course),
-                self.shaft_target,
+                self.telegraph,
+                self._wave_period,
+                self._wavelength_ratio,
+                self._height_ratio,
+                self._roll_period,
             ]
         )
 

@@ -22,7 +22,7 @@ SHIP_ENV_IDS = (
     "ship_gym/CourseKeeping-v1",
     "ship_gym/RollStabilization-v1",
     "ship_gym/RideControl-v1",
-    "ship_gym/CapsizeAvoidance-v1",
+    "ship_gym/CapsizeAvoidance-v2",
 )
 """Every registered id built on the 6-DOF ship model (RollOneDOF is the 1-DOF Edith Terkol
 equation, with no hull to choose)."""

@@ -1,0 +1,350 @@
+"""The learned-vs-classical benchmark: train the shipped configs, evaluate on held-out seeds.
+
+For each task (:data:`TASKS`) the benchmark
+
+1. evaluates the task's classical baselines (:mod:`ship_gym.agents.baselines`) on the held-out
+   seeds (``seed`` … ``seed + episodes − 1``, by default 10 000 onwards — never a training seed:
+   a training run with seed k resets its n_envs episodes with seeds k … k + n_envs − 1 and
+   draws the later ones from their generators; a held-out seed below that is refused);
+2. trains the task's shipped configs (:mod:`ship_gym.agents.configs`) with ``n_seeds`` training
+   seeds each (``ship-gym train`` runs under ``<out>/runs/<task>/<config>/seed<k>``; a finished
+   run is reused, so an interrupted benchmark resumes) and evaluates every trained policy on the
+   same held-out seeds;
+3. writes ``<out>/results.md`` (one table per task: task metric, effort = RMS action, capsize
+   rate with its Wilson 95 % interval, return, safe-RL cost, wall time and steps/s of the
+   training), ``<out>/results.json``, a learning-curve figure per task
+   (``<out>/curves_<task>.png``: mean return of the last 100 training episodes against time
+   steps, one line per seed), and copies the best training seed of every config into
+   ``<out>/policies/<task>/<config>/`` (``model.zip``, ``vecnormalize.pkl``, ``config.toml``), so
+   that ``ship-gym evaluate --policies model:<that folder>`` reproduces the table without
+   training.
+
+The target of issue #16 is read off each table: the learned policy's metric ≥ 20 % better than
+the strongest baseline's (the baseline best on the metric), at equal or lower effort; the table
+says whether it is met (``target``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+__all__ = ["TASKS", "BenchmarkTask", "run_benchmark"]
+
+
+@dataclass(frozen=True)
+class BenchmarkTask:
+    """One task of the benchmark.
+
+    Attributes
+    ----------
+    env_id : str
+        The environment.
+    metric : str
+        The task metric (a key of :func:`ship_gym.agents.evaluate.summarize`); lower is better.
+    metric_label : str
+        Its name and unit for the table.
+    baselines : tuple of str
+        Classical baselines (:data:`ship_gym.agents.baselines.BASELINES` names).
+    configs : tuple of str
+        Shipped training configs.
+    """
+
+    env_id: str
+    metric: str
+    metric_label: str
+    baselines: tuple[str, ...]
+    configs: tuple[str, ...]
+    env_kwargs: dict = field(default_factory=dict)
+
+
+TASKS: dict[str, BenchmarkTask] = {
+    "CourseKeeping": BenchmarkTask(
+        "ship_gym/CourseKeeping-v1",
+        "rms_heading_error_deg",
+        "RMS heading error [deg]",
+        ("zero", "pid"),
+        ("ppo_course_keeping",),
+    ),
+    "RollStabilization": BenchmarkTask(
+        "ship_gym/RollStabilization-v1",
+        "rms_roll_deg",
+        "RMS roll [deg]",
+        ("zero", "fins"),
+        ("ppo_roll_stabilization",),
+    ),
+    "RideControl": BenchmarkTask(
+        "ship_gym/RideControl-v1",
+        "rms_vertical_acceleration_mps2",
+        "RMS vertical acceleration [m/s²]",
+        ("zero", "ride"),
+        ("sac_ride_control",),
+    ),
+    "CapsizeAvoidance": BenchmarkTask(
+        "ship_gym/CapsizeAvoidance-v2",
+        "capsize_rate",
+        "capsize rate [-]",
+        ("zero", "imo-guidance"),
+        ("ppo_capsize_avoidance", "ppo_lagrangian_capsize_avoidance"),
+    ),
+    "RollOneDOF": BenchmarkTask(
+        "ship_gym/RollOneDOF-v0",
+        "capsize_rate",
+        "capsize rate [-]",
+        ("zero", "fins"),
+        ("ppo_roll_one_dof",),
+    ),
+}
+"""The benchmark's tasks by name."""
+
+
+def _run_is_complete(run: Path, timesteps: int) -> bool:
+    summary = run / "summary.json"
+    if not (summary.is_file() and (run / "model.zip").is_file()):
+        return False
+    try:
+        return int(json.loads(summary.read_text())["num_timesteps"]) >= timesteps
+    except (ValueError, KeyError):
+        return False
+
+
+def _curve(run: Path) -> dict[str, list[float]]:
+    import csv
+
+    path = run / "progress.csv"
+    if not path.is_file():
+        return {"timesteps": [], "mean_return": []}
+    rows = list(csv.DictReader(path.open()))
+    return {k: [float(r[k]) for r in rows] for k in ("timesteps", "mean_return", "mean_cost")}
+
+
+def _row(label: str, metrics: dict, task: BenchmarkTask, training: dict | None) -> dict:
+    from ship_gym.analysis.capsize_statistics import wilson_interval
+
+    n = int(metrics["episodes"])
+    k = round(metrics["capsize_rate"] * n)
+    low, high = wilson_interval(k, n)
+    row = {
+        "policy": label,
+        "metric": metrics[task.metric],
+        "effort": metrics["rms_action"],
+        "capsized": k,
+        "episodes": n,
+        "capsize_ci95": [low, high],
+        "mean_return": metrics["mean_return"],
+        "mean_cost": metrics["mean_cost"],
+    }
+    if training is not None:
+        row.update(training)
+    return row
+
+
+def run_benchmark(
+    tasks: Sequence[str],
+    out_dir: str | Path,
+    *,
+    n_seeds: int = 3,
+    timesteps: int | None = None,
+    episodes: int = 40,
+    seed: int = 10_000,
+    progress: bool = True,
+    report: Callable[[str], None] = print,
+) -> dict[str, Any]:
+    """Run the benchmark (module docstring) and write its files; return the results.
+
+    Parameters
+    ----------
+    tasks : sequence of str
+        Names of :data:`TASKS`.
+    out_dir : str or Path
+        Output folder.
+    n_seeds : int
+        Training seeds per config (0 … n_seeds − 1).
+    timesteps : int, optional
+        Training budget per run (default: each config's ``total_timesteps``).
+    episodes : int
+        Held-out evaluation episodes per policy.
+    seed : int
+        First held-out seed.
+    progress : bool
+        Progress bars.
+    report : callable
+        Where progress messages go.
+
+    Raises
+    ------
+    ValueError
+        Unknown task, non-positive counts, or held-out seeds that overlap training seeds.
+    """
+    from ship_gym.agents.evaluate import evaluate_policies
+    from ship_gym.agents.train import load_config, train
+
+    unknown = [t for t in tasks if t not in TASKS]
+    if unknown:
+        raise ValueError(f"unknown task {unknown[0]!r}; expected some of {sorted(TASKS)}")
+    for name, value in (("n_seeds", n_seeds), ("episodes", episodes)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    if timesteps is not None and (not isinstance(timesteps, int) or timesteps < 1):
+        raise ValueError(f"timesteps must be a positive integer or None, got {timesteps!r}")
+    for name in tasks:  # before any work: the held-out seeds are no training seed
+        for config_name in TASKS[name].configs:
+            top = n_seeds - 1 + load_config(config_name).n_envs - 1
+            if seed <= top:  # the training env of seed k resets with k … k + n_envs − 1
+                raise ValueError(
+                    f"held-out seed {seed} overlaps the training seeds 0 … {top} of "
+                    f"{config_name}; expected a seed > {top}"
+                )
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    results: dict[str, Any] = {"seed": seed, "episodes": episodes, "n_seeds": n_seeds, "tasks": {}}
+    for name in tasks:
+        task = TASKS[name]
+        rows: list[dict] = []
+        curves: dict[str, list[dict]] = {}
+        base = evaluate_policies(
+            task.env_id, list(task.baselines), episodes, seed, task.env_kwargs, progress=progress
+        )
+        for label, metrics in base["policies"].items():
+            rows.append(_row(label, metrics, task, None))
+        for config_name in task.configs:
+            curves[config_name] = []
+            best: tuple[float, Path] | None = None
+            for k in range(n_seeds):
+                run = out / "runs" / name / config_name / f"seed{k}"
+                config = load_config(
+                    config_name,
+                    seed=k,
+                    output_dir=str(run),
+                    total_timesteps=timesteps,
+                    progress_bar=progress,
+                    tensorboard=False,
+                )
+                if _run_is_complete(run, config.total_timesteps):
+                    report(f"{name}/{config_name}/seed{k}: reusing the finished run")
+                else:
+                    report(f"{name}/{config_name}/seed{k}: training {config.total_timesteps} steps")
+                    train(config)
+                summary = json.loads((run / "summary.json").read_text())
+                ev = evaluate_policies(
+                    task.env_id, [f"model:{run}"], episodes, seed, progress=progress
+                )
+                metrics = next(iter(ev["policies"].values()))
+                training = {
+                    "config": config_name,
+                    "training_seed": k,
+                    "timesteps": summary["num_timesteps"],
+                    "wall_s": summary["wall_time_s"],
+                    "steps_per_s": summary["steps_per_s"],
+                }
+                rows.append(_row(f"{config_name} seed {k}", metrics, task, training))
+                curves[config_name].append(_curve(run))
+                score = float(metrics[task.metric])
+                if best is None or score < best[0] or (math.isnan(best[0]) and score == score):
+                    best = (score, run)
+            if best is not None:
+                _ship_policy(best[1], out / "policies" / name / config_name)
+        results["tasks"][name] = _verdict(task, rows)
+        results["tasks"][name]["curves"] = curves
+        _plot_curves(name, task, curves, out / f"curves_{name}.png")
+    from ship_gym.io_utils import atomic_write_text
+
+    atomic_write_text(out / "results.json", json.dumps(results, indent=2, default=float))
+    atomic_write_text(out / "results.md", results_markdown(results))
+    return results
+
+
+def _ship_policy(run: Path, to: Path) -> None:
+    to.mkdir(parents=True, exist_ok=True)
+    for name in ("model.zip", "vecnormalize.pkl", "config.toml", "summary.json"):
+        if (run / name).is_file():
+            shutil.copy2(run / name, to / name)
+
+
+def _verdict(task: BenchmarkTask, rows: list[dict]) -> dict[str, Any]:
+    """The rows, the strongest baseline and, per learned row, whether the target is met."""
+    baselines = [r for r in rows if "config" not in r and r["policy"] != "zero"]
+    strongest = min(baselines, key=lambda r: r["metric"]) if baselines else None
+    for r in rows:
+        if "config" not in r or strongest is None:
+            continue
+        ref = strongest["metric"]
+        gain = (ref - r["metric"]) / ref if ref > 0 else (0.0 if r["metric"] <= 0 else -math.inf)
+        r["gain_vs_strongest"] = gain
+        r["target"] = bool(gain >= 0.2 and r["effort"] <= strongest["effort"])
+    return {
+        "env_id": task.env_id,
+        "metric": task.metric,
+        "metric_label": task.metric_label,
+        "strongest_baseline": strongest["policy"] if strongest else None,
+        "rows": rows,
+    }
+
+
+def results_markdown(results: dict[str, Any]) -> str:
+    """The tables of ``results.md``."""
+    lines = [
+        "# Learned vs classical controllers",
+        "",
+        f"Held-out seeds {results['seed']} … {results['seed'] + results['episodes'] - 1} "
+        f"({results['episodes']} episodes per policy; training seeds 0 … "
+        f"{results['n_seeds'] - 1}). Effort = RMS action [-]; capsize rate with its Wilson 95 % "
+        "interval; target = ≥ 20 % better than the strongest baseline on the task metric at "
+        "equal or lower effort. Written by `ship-gym benchmark`.",
+        "",
+    ]
+    for name, task in results["tasks"].items():
+        lines += [
+            f"## {name} (`{task['env_id']}`)",
+            "",
+            f"Task metric: {task['metric_label']} (lower is better); strongest baseline: "
+            f"{task['strongest_baseline']}.",
+            "",
+            f"| policy | {task['metric_label']} | effort | capsize [95 % CI] | return | cost | "
+            "training wall [s] | steps/s | vs strongest | target |",
+            "|---|---|---|---|---|---|---|---|---|---|",
+        ]
+        for r in task["rows"]:
+            low, high = r["capsize_ci95"]
+            wall = f"{r['wall_s']:.0f}" if "wall_s" in r else "–"
+            rate = f"{r['steps_per_s']:.0f}" if r.get("steps_per_s") else "–"
+            gain = f"{100 * r['gain_vs_strongest']:+.0f} %" if "gain_vs_strongest" in r else "–"
+            target = ("met" if r["target"] else "not met") if "target" in r else "–"
+            lines.append(
+                f"| {r['policy']} | {r['metric']:.4g} | {r['effort']:.3f} | "
+                f"{r['capsized']}/{r['episodes']} [{low:.2f}, {high:.2f}] | "
+                f"{r['mean_return']:.0f} | {r['mean_cost']:.2f} | {wall} | {rate} | {gain} | "
+                f"{target} |"
+            )
+        lines += ["", f"![learning curves](curves_{name}.png)", ""]
+    return "\n".join(lines)
+
+
+def _plot_curves(name: str, task: BenchmarkTask, curves: dict[str, list[dict]], path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ship_gym.io_utils import atomic_write
+
+    fig, ax = plt.subplots(figsize=(7.0, 4.2))
+    colours = [plt.get_cmap("tab10")(i) for i in range(10)]
+    for c, (config, runs) in enumerate(curves.items()):
+        for k, curve in enumerate(runs):
+            ax.plot(curve["timesteps"], curve["mean_return"], color=colours[c % 10],
+                    alpha=0.85, lw=1.2, label=config if k == 0 else None)  # fmt: skip
+    ax.set_xlabel("training time steps [-]")
+    ax.set_ylabel("mean return of the last 100 episodes [-]")
+    ax.set_title(f"{name} ({task.env_id}): one line per training seed", fontsize=9)
+    ax.grid(alpha=0.3)
+    if curves:
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
+    plt.close(fig)

@@ -1,0 +1,84 @@
+"""ship-gym benchmark (ship_gym.agents.benchmark): baselines and trained configs on held-out
+seeds, the table, curves and shipped policies; resume; refused arguments."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+import ship_gym  # noqa: F401
+from ship_gym.agents.benchmark import TASKS, run_benchmark
+from ship_gym.agents.evaluate import evaluate_policies
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    out = tmp_path_factory.mktemp("bench")
+    messages: list[str] = []
+    results = run_benchmark(
+        ["RollOneDOF"], out, n_seeds=2, timesteps=512, episodes=3, progress=False,
+        report=messages.append,
+    )  # fmt: skip
+    return out, results, messages
+
+
+def test_benchmark_writes_table_curves_policies(tiny):
+    out, results, messages = tiny
+    task = results["tasks"]["RollOneDOF"]
+    labels = [r["policy"] for r in task["rows"]]
+    assert labels == ["zero", "fins", "ppo_roll_one_dof seed 0", "ppo_roll_one_dof seed 1"]
+    assert task["strongest_baseline"] == "fins"
+    for r in task["rows"]:
+        assert r["episodes"] == 3 and 0 <= r["capsized"] <= 3
+        lo, hi = r["capsize_ci95"]
+        assert lo <= r["capsized"] / 3 <= hi
+    learned = [r for r in task["rows"] if "config" in r]
+    assert all(r["timesteps"] >= 512 and r["steps_per_s"] > 0 for r in learned)
+    assert all(isinstance(r["target"], bool) for r in learned)
+    text = (out / "results.md").read_text()
+    assert "## RollOneDOF (`ship_gym/RollOneDOF-v0`)" in text and "| fins |" in text
+    assert (out / "curves_RollOneDOF.png").stat().st_size > 1000
+    assert len(task["curves"]["ppo_roll_one_dof"]) == 2
+    assert json.loads((out / "results.json").read_text())["episodes"] == 3
+    shipped = out / "policies" / "RollOneDOF" / "ppo_roll_one_dof"
+    assert (shipped / "model.zip").is_file() and (shipped / "config.toml").is_file()
+    assert sum("training 512 steps" in m for m in messages) == 2
+
+
+def test_shipped_policy_reproduces_its_row_and_a_rerun_reuses_the_runs(tiny, tmp_path):
+    out, results, _ = tiny
+    shipped = out / "policies" / "RollOneDOF" / "ppo_roll_one_dof"
+    ev = evaluate_policies("ship_gym/RollOneDOF-v0", [f"model:{shipped}"], 3, 10_000,
+                           progress=False)  # fmt: skip
+    metric = next(iter(ev["policies"].values()))["capsize_rate"]
+    rows = [r for r in results["tasks"]["RollOneDOF"]["rows"] if "config" in r]
+    assert metric in [r["metric"] for r in rows]
+    messages: list[str] = []
+    run_benchmark(["RollOneDOF"], out, n_seeds=2, timesteps=512, episodes=3, progress=False,
+                  report=messages.append)  # fmt: skip
+    assert sum("reusing the finished run" in m for m in messages) == 2
+
+
+def test_bad_arguments_are_refused(tmp_path):
+    with pytest.raises(ValueError, match="unknown task 'Sailing'"):
+        run_benchmark(["Sailing"], tmp_path)
+    with pytest.raises(ValueError, match="episodes must be a positive integer"):
+        run_benchmark(["RollOneDOF"], tmp_path, episodes=0)
+    with pytest.raises(ValueError, match="overlaps the training seeds"):
+        run_benchmark(["RollOneDOF"], tmp_path, seed=3, timesteps=64, episodes=1, progress=False)
+
+
+def test_every_task_names_registered_ids_baselines_and_shipped_configs():
+    import gymnasium
+
+    from ship_gym.agents.baselines import BASELINES
+    from ship_gym.agents.configs import shipped_config_names
+    from ship_gym.agents.train import load_config
+
+    for task in TASKS.values():
+        gymnasium.spec(task.env_id)
+        assert set(task.baselines) <= set(BASELINES)
+        for name in task.configs:
+            assert name in shipped_config_names()
+            assert load_config(name).env_id == task.env_id
