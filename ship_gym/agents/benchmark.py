@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-__all__ = ["TASKS", "BenchmarkTask", "run_benchmark"]
+__all__ = ["TASKS", "BenchmarkTask", "check_benchmark_arguments", "run_benchmark"]
 
 
 @dataclass(frozen=True)
@@ -144,6 +144,34 @@ def _row(label: str, metrics: dict, task: BenchmarkTask, training: dict | None) 
     return row
 
 
+def check_benchmark_arguments(
+    tasks: Sequence[str], *, n_seeds: int, timesteps: int | None, episodes: int, seed: int
+) -> None:
+    """Refuse bad benchmark arguments before any work (ValueError naming the argument): unknown
+    tasks, non-positive counts, held-out seeds that overlap a training run's seeds."""
+    from ship_gym.agents.train import load_config
+
+    unknown = [t for t in tasks if t not in TASKS]
+    if unknown or not tasks:
+        raise ValueError(
+            f"tasks: {'unknown task ' + repr(unknown[0]) if unknown else 'none given'}; "
+            f"expected some of {sorted(TASKS)}"
+        )
+    for name, value in (("n_seeds", n_seeds), ("episodes", episodes)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    if timesteps is not None and (not isinstance(timesteps, int) or timesteps < 1):
+        raise ValueError(f"timesteps must be a positive integer or None, got {timesteps!r}")
+    for name in tasks:
+        for config_name in TASKS[name].configs:
+            top = n_seeds - 1 + load_config(config_name).n_envs - 1
+            if seed <= top:  # the training env of seed k resets with k … k + n_envs − 1
+                raise ValueError(
+                    f"held-out seed {seed} overlaps the training seeds 0 … {top} of "
+                    f"{config_name}; expected a seed > {top}"
+                )
+
+
 def run_benchmark(
     tasks: Sequence[str],
     out_dir: str | Path,
@@ -184,22 +212,8 @@ def run_benchmark(
     from ship_gym.agents.evaluate import evaluate_policies
     from ship_gym.agents.train import load_config, train
 
-    unknown = [t for t in tasks if t not in TASKS]
-    if unknown:
-        raise ValueError(f"unknown task {unknown[0]!r}; expected some of {sorted(TASKS)}")
-    for name, value in (("n_seeds", n_seeds), ("episodes", episodes)):
-        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-            raise ValueError(f"{name} must be a positive integer, got {value!r}")
-    if timesteps is not None and (not isinstance(timesteps, int) or timesteps < 1):
-        raise ValueError(f"timesteps must be a positive integer or None, got {timesteps!r}")
-    for name in tasks:  # before any work: the held-out seeds are no training seed
-        for config_name in TASKS[name].configs:
-            top = n_seeds - 1 + load_config(config_name).n_envs - 1
-            if seed <= top:  # the training env of seed k resets with k … k + n_envs − 1
-                raise ValueError(
-                    f"held-out seed {seed} overlaps the training seeds 0 … {top} of "
-                    f"{config_name}; expected a seed > {top}"
-                )
+    check_benchmark_arguments(tasks, n_seeds=n_seeds, timesteps=timesteps, episodes=episodes,
+                              seed=seed)  # fmt: skip
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     results: dict[str, Any] = {"seed": seed, "episodes": episodes, "n_seeds": n_seeds, "tasks": {}}

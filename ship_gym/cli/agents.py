@@ -107,7 +107,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
 
 
 def _cmd_benchmark(args: argparse.Namespace) -> int:
-    from ship_gym.agents.benchmark import TASKS, run_benchmark
+    from ship_gym.agents.benchmark import TASKS, check_benchmark_arguments, run_benchmark
 
     tasks = [t.strip() for t in args.tasks.split(",") if t.strip()]
     unknown = [t for t in tasks if t not in TASKS]
@@ -116,6 +116,15 @@ def _cmd_benchmark(args: argparse.Namespace) -> int:
             f"--tasks {args.tasks!r}: {'unknown ' + repr(unknown[0]) if unknown else 'empty'}; "
             f"expected comma-separated names of {', '.join(TASKS)}"
         )
+    try:
+        check_benchmark_arguments(
+            tasks, n_seeds=args.seeds, timesteps=args.timesteps, episodes=args.episodes,
+            seed=args.seed,
+        )  # fmt: skip
+    except ValueError as exc:
+        raise CLIError(
+            f"--seed {args.seed}: {exc}" if "held-out" in str(exc) else str(exc)
+        ) from None
     prepare_output_dir(args.out, "--out")
     try:
         run_benchmark(

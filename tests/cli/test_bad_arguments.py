@@ -36,6 +36,7 @@ EXPENSIVE = [
     ("ship_gym.analysis.identification", "identify_roll_equation"),
     ("ship_gym.agents.train", "train"),
     ("ship_gym.agents.evaluate", "evaluate_policies"),
+    ("ship_gym.agents.benchmark", "run_benchmark"),
 ]
 
 
@@ -352,6 +353,11 @@ CASES: list[tuple[str, int, list[str]]] = [
     ("train {bad_toml}", R, ["bad.toml", "invalid TOML"]),
     ("train {bad_env}", R, ["[env] id", "Bogus", "registered id"]),
     # evaluate
+    ("benchmark --tasks Sailing", R, ["--tasks", "Sailing", "expected comma-separated"]),
+    ("benchmark --tasks ,", R, ["--tasks", "empty"]),
+    ("benchmark --seeds 0", U, ["--seeds", "0"]),
+    ("benchmark --tasks RollOneDOF --seed 5", R, ["--seed 5", "overlaps the training seeds"]),
+    ("benchmark --out {file}", R, ["--out"]),
     ("evaluate", U, ["--env", "required"]),
     ("evaluate --env bogus", R, ["--env", "bogus", "registered id"]),
     ("evaluate --env ship_gym/Bogus-v0", R, ["--env", "Bogus", "registered id"]),

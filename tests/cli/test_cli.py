@@ -22,7 +22,7 @@ GROUPS = {
     "campaign": ("campaign",),
     "safe_basin": ("safe-basin",),
     "identify": ("identify",),
-    "agents": ("train", "evaluate"),
+    "agents": ("train", "evaluate", "benchmark"),
 }
 COMMANDS = [c for commands in GROUPS.values() for c in commands]
 CLI_DIR = Path(ship_gym.cli.__file__).parent
