@@ -123,12 +123,18 @@ def make_cost_shaped(venv: Any, lambda_init: float) -> Any:
 
 
 def find_cost_shaped(venv: Any) -> Any:
-    """The cost-shaping wrapper inside a VecEnv stack (ValueError if none)."""
+    """The cost-shaping wrapper inside a VecEnv stack (ValueError if none).
+
+    Looked up by the wrapper's *own* attributes: SB3's wrappers forward unknown attribute reads
+    to the env they wrap, so ``hasattr`` on an outer wrapper (VecNormalize) would find the
+    inner one's ``multiplier`` and a write would land on the outer one, silently unused.
+    """
     env = venv
     while env is not None:
-        if hasattr(env, "episode_costs") and hasattr(env, "multiplier"):
+        own = vars(env)
+        if "episode_costs" in own and "multiplier" in own:
             return env
-        env = getattr(env, "venv", None)
+        env = own.get("venv")
     raise ValueError("no cost-shaping wrapper in the VecEnv stack (make_cost_shaped)")
 
 

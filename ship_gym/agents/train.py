@@ -285,13 +285,12 @@ def learning_curve_callback() -> Any:
             episodes = list(self.model.ep_info_buffer or [])
             if not episodes:
                 return
-            env: Any = self.training_env
-            lam = 0.0
-            while env is not None:
-                if hasattr(env, "multiplier"):
-                    lam = float(env.multiplier)
-                    break
-                env = getattr(env, "venv", None)
+            from ship_gym.agents.lagrangian import find_cost_shaped
+
+            try:
+                lam = float(find_cost_shaped(self.training_env).multiplier)
+            except ValueError:  # not a cost-shaped run
+                lam = 0.0
             self.rows.append(
                 {
                     "timesteps": float(self.num_timesteps),

@@ -46,6 +46,23 @@ def test_shaped_reward_is_reward_minus_lambda_times_cost():
         find_cost_shaped(plain)
 
 
+def test_the_multiplier_is_found_and_set_under_vecnormalize():
+    """SB3 wrappers forward attribute reads inward: λ must be set on the shaping wrapper itself,
+    not on the VecNormalize around it (where it would be silently unused)."""
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    inner = make_cost_shaped(make_sb3_vec_env("ship_gym/RollOneDOF-v0", 2, seed=1,
+                                              env_kwargs=KWARGS), 0.0)  # fmt: skip
+    stack = VecNormalize(inner)
+    assert find_cost_shaped(stack) is inner
+    cb = lagrange_multiplier_callback(SafeConfig(cost_limit=0.0, lagrangian_lr=1.0))
+    cb.init_callback(_Model(stack))
+    inner.episode_costs = [3.0]
+    cb._on_rollout_end()
+    assert inner.multiplier == 3.0 and "multiplier" not in vars(stack)
+    assert inner.episode_costs == []
+
+
 class _Logger:
     def __init__(self):
         self.records = {}
