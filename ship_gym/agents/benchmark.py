@@ -29,6 +29,7 @@ from __future__ import annotations
 import json
 import math
 import shutil
+import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -216,7 +217,13 @@ def run_benchmark(
                               seed=seed)  # fmt: skip
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    results: dict[str, Any] = {"seed": seed, "episodes": episodes, "n_seeds": n_seeds, "tasks": {}}
+    results: dict[str, Any] = {"tasks": {}}
+    previous = out / "results.json"
+    if previous.is_file():  # other tasks' results stay (a task is re-run as a whole)
+        try:
+            results["tasks"] = dict(json.loads(previous.read_text()).get("tasks", {}))
+        except ValueError:
+            report(f"{previous}: unreadable, rewritten")
     for name in tasks:
         task = TASKS[name]
         rows: list[dict] = []
@@ -264,7 +271,14 @@ def run_benchmark(
             if best is not None:
                 _ship_policy(best[1], out / "policies" / name / config_name)
         results["tasks"][name] = _verdict(task, rows)
-        results["tasks"][name]["curves"] = curves
+        results["tasks"][name].update(
+            curves=curves,
+            seed=seed,
+            episodes=episodes,
+            n_seeds=n_seeds,
+            timesteps=timesteps,
+            date=time.strftime("%Y-%m-%d"),
+        )
         _plot_curves(name, task, curves, out / f"curves_{name}.png")
     from ship_gym.io_utils import atomic_write_text
 
@@ -305,18 +319,23 @@ def results_markdown(results: dict[str, Any]) -> str:
     lines = [
         "# Learned vs classical controllers",
         "",
-        f"Held-out seeds {results['seed']} … {results['seed'] + results['episodes'] - 1} "
-        f"({results['episodes']} episodes per policy; training seeds 0 … "
-        f"{results['n_seeds'] - 1}). Effort = RMS action [-]; capsize rate with its Wilson 95 % "
-        "interval; target = ≥ 20 % better than the strongest baseline on the task metric at "
-        "equal or lower effort. Written by `ship-gym benchmark`.",
+        "Every policy runs the same held-out episodes (seeds far from the training seeds). "
+        "Effort = RMS action [-]; capsize rate with its Wilson 95 % interval; cost = the Safe-RL "
+        "cost per episode (time in violation [control steps]); target = ≥ 20 % better than the "
+        "strongest baseline on the task metric at equal or lower effort. Written by "
+        "`ship-gym benchmark` (rerun it to reproduce; `ship-gym evaluate --policies "
+        "model:docs/benchmarks/policies/<task>/<config>` evaluates a shipped policy).",
         "",
     ]
     for name, task in results["tasks"].items():
+        first = task["seed"]
+        budget = task["timesteps"] or "each config's total_timesteps"
         lines += [
             f"## {name} (`{task['env_id']}`)",
             "",
-            f"Task metric: {task['metric_label']} (lower is better); strongest baseline: "
+            f"Held-out seeds {first} … {first + task['episodes'] - 1}; training seeds 0 … "
+            f"{task['n_seeds'] - 1}, budget {budget}; run {task['date']}. Task metric: "
+            f"{task['metric_label']} (lower is better); strongest baseline: "
             f"{task['strongest_baseline']}.",
             "",
             f"| policy | {task['metric_label']} | effort | capsize [95 % CI] | return | cost | "

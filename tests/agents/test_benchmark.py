@@ -40,7 +40,7 @@ def test_benchmark_writes_table_curves_policies(tiny):
     assert "## RollOneDOF (`ship_gym/RollOneDOF-v0`)" in text and "| fins |" in text
     assert (out / "curves_RollOneDOF.png").stat().st_size > 1000
     assert len(task["curves"]["ppo_roll_one_dof"]) == 2
-    assert json.loads((out / "results.json").read_text())["episodes"] == 3
+    assert json.loads((out / "results.json").read_text())["tasks"]["RollOneDOF"]["episodes"] == 3
     shipped = out / "policies" / "RollOneDOF" / "ppo_roll_one_dof"
     assert (shipped / "model.zip").is_file() and (shipped / "config.toml").is_file()
     assert sum("training 512 steps" in m for m in messages) == 2
@@ -54,10 +54,17 @@ def test_shipped_policy_reproduces_its_row_and_a_rerun_reuses_the_runs(tiny, tmp
     metric = next(iter(ev["policies"].values()))["capsize_rate"]
     rows = [r for r in results["tasks"]["RollOneDOF"]["rows"] if "config" in r]
     assert metric in [r["metric"] for r in rows]
+    # another task's results in the folder are kept by a rerun of this one
+    saved = json.loads((out / "results.json").read_text())
+    saved["tasks"]["Other"] = dict(saved["tasks"]["RollOneDOF"], env_id="ship_gym/Other-v0")
+    (out / "results.json").write_text(json.dumps(saved))
     messages: list[str] = []
     run_benchmark(["RollOneDOF"], out, n_seeds=2, timesteps=512, episodes=3, progress=False,
                   report=messages.append)  # fmt: skip
     assert sum("reusing the finished run" in m for m in messages) == 2
+    merged = json.loads((out / "results.json").read_text())["tasks"]
+    assert set(merged) == {"RollOneDOF", "Other"} and merged["RollOneDOF"]["n_seeds"] == 2
+    assert "## Other (`ship_gym/Other-v0`)" in (out / "results.md").read_text()
 
 
 def test_bad_arguments_are_refused(tmp_path):
