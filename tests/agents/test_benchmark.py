@@ -89,3 +89,35 @@ def test_every_task_names_registered_ids_baselines_and_shipped_configs():
         for name in task.configs:
             assert name in shipped_config_names()
             assert load_config(name).env_id == task.env_id
+
+
+def _shipped_policies():
+    from pathlib import Path
+
+    root = Path(__file__).parents[2] / "docs" / "benchmarks"
+    results = json.loads((root / "results.json").read_text()) if root.is_dir() else {"tasks": {}}
+    params, seen = [], set()
+    for name, task in results["tasks"].items():
+        for folder in sorted((root / "policies" / name).glob("*")):
+            if not (folder / "model.zip").is_file():
+                continue
+            # one policy per task in the default run (each costs 10–40 s), the others `slow`
+            marks = [pytest.mark.slow] if name in seen else []
+            seen.add(name)
+            params.append(pytest.param(name, folder, task, marks=marks, id=f"{name}-{folder.name}"))
+    return params
+
+
+@pytest.mark.parametrize(("name", "folder", "task"), _shipped_policies())
+def test_shipped_policies_reproduce_their_rows_of_the_table(name, folder, task):
+    """`ship-gym evaluate` of a shipped policy gives its row of docs/benchmarks/results.md
+    exactly (same held-out seeds, deterministic policy and env)."""
+    ev = evaluate_policies(task["env_id"], [f"model:{folder}"], task["episodes"], task["seed"],
+                           progress=False)  # fmt: skip
+    metrics = next(iter(ev["policies"].values()))
+    rows = [r for r in task["rows"] if r.get("config") == folder.name]
+    assert rows, f"no row of {folder.name} in the {name} table"
+    match = [r for r in rows if r["mean_return"] == pytest.approx(metrics["mean_return"], 1e-9)]
+    assert match, (metrics["mean_return"], [r["mean_return"] for r in rows])
+    assert match[0]["metric"] == pytest.approx(metrics[task["metric"]], rel=1e-9)
+    assert match[0]["capsized"] == round(metrics["capsize_rate"] * task["episodes"])
