@@ -34,6 +34,7 @@ import inspect
 import json
 import math
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -85,9 +86,8 @@ def read_policy_controller(path: str | os.PathLike[str], *, field: str) -> Polic
         No model, no ``config.toml`` naming a ship environment, or an environment that cannot
         take a campaign cell (not a ship task).
     """
-    import tomllib
-
     from ship_gym.envs.registration import env_class_of
+    from ship_gym.envs.saved_policies import read_run_config
 
     p = Path(path)
     zip_path = p / "model.zip" if p.is_dir() else p
@@ -100,17 +100,17 @@ def read_policy_controller(path: str | os.PathLike[str], *, field: str) -> Polic
             "writes beside model.zip (it names the environment the policy drives)"
         )
     try:
-        env = tomllib.loads(config_path.read_text()).get("env", {})
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{field}: {config_path}: invalid TOML: {exc}") from None
+        env = read_run_config(config_path).get("env", {})
+    except ValueError as exc:
+        raise ValueError(f"{field}: {exc}") from None
     env_id, kwargs = env.get("id"), dict(env.get("kwargs", {}))
     if not isinstance(env_id, str):
         raise ValueError(f"{field}: {config_path} has no [env] id")
     try:
-        task_class = env_class_of(env_id).task_class
+        env_class_of(env_id)
     except ValueError as exc:
         raise ValueError(f"{field}: {config_path}: {exc}") from None
-    if "ship" not in inspect.signature(task_class.__init__).parameters:
+    if "ship" not in _task_parameters(env_id):
         raise ValueError(
             f"{field}: the policy drives {env_id!r}, which has no ship model; expected a policy "
             "trained on a ship environment (CourseKeeping, RollStabilization, RideControl, "
@@ -123,10 +123,11 @@ def read_policy_controller(path: str | os.PathLike[str], *, field: str) -> Polic
     return PolicyController(str(zip_path.resolve()), digest.hexdigest(), env_id, kwargs)
 
 
-def _accepted(env_id: str) -> set[str]:
+def _task_parameters(env_id: str) -> Mapping[str, inspect.Parameter]:
+    """The keyword arguments of an environment's task (name → parameter, with its default)."""
     from ship_gym.envs.registration import env_class_of
 
-    return set(inspect.signature(env_class_of(env_id).task_class.__init__).parameters)
+    return inspect.signature(env_class_of(env_id).task_class.__init__).parameters
 
 
 def cell_env_kwargs(
@@ -147,7 +148,7 @@ def cell_env_kwargs(
         For what the env cannot represent (naming the campaign field): a loading setting other
         than ``kg``, a sea kind, γ or spreading the env does not draw.
     """
-    accepted = _accepted(controller.env_id)
+    accepted = _task_parameters(controller.env_id)
     kwargs = dict(controller.env_kwargs)
     unknown = sorted(set(loading) - {"kg"})
     if unknown:
@@ -182,12 +183,6 @@ def cell_env_kwargs(
                 )
             kwargs["wave_spreading_s"] = float(sea.spreading_s)
     return kwargs
-
-
-def _default(env_id: str, name: str) -> Any:
-    from ship_gym.envs.registration import env_class_of
-
-    return inspect.signature(env_class_of(env_id).task_class.__init__).parameters[name].default
 
 
 def _period(sea: Any) -> float:
@@ -259,7 +254,9 @@ def run_policy_cells(
     )
     policy = load_policy(controller.path)
     n = len(seeds)
-    control_dt = float(kwargs.get("control_dt_s", _default(controller.env_id, "control_dt_s")))
+    control_dt = float(
+        kwargs.get("control_dt_s", _task_parameters(controller.env_id)["control_dt_s"].default)
+    )
     steps = max(1, round(duration_s / control_dt))
     # Gymnasium's default NEXT_STEP autoreset: the step that ends an episode leaves its final
     # state in the simulator and its final info in ``infos`` (ended episodes are then ignored)

@@ -42,7 +42,6 @@ __all__ = [
 ]
 
 MAX_EPISODE_STEPS = max_episode_steps("CapsizeAvoidance")
-_KNOT = 1852.0 / 3600.0  # [m/s]
 """Time limit in control steps, from the registration (750 s at the default control_dt;
 Matusiak ran 720 s)."""
 

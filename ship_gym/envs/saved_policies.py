@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["ALGORITHMS", "ModelPolicy", "load_policy"]
+__all__ = ["ALGORITHMS", "ModelPolicy", "load_policy", "read_run_config"]
 
 ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
 """The stable-baselines3 algorithms a run may name (``[algorithm] name``)."""
@@ -60,6 +60,20 @@ class ModelPolicy:
         )
 
 
+def read_run_config(config_path: Path) -> dict[str, Any]:
+    """The parsed ``config.toml`` of a training run.
+
+    Raises
+    ------
+    ValueError
+        If it is not valid TOML (naming the file).
+    """
+    try:
+        return tomllib.loads(config_path.read_text())
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{config_path}: invalid TOML: {exc}") from None
+
+
 def load_policy(path: str | Path, device: str = "cpu") -> ModelPolicy:
     """Load a model saved by :mod:`ship_gym.agents.train` (a run directory or a ``.zip``).
 
@@ -77,10 +91,7 @@ def load_policy(path: str | Path, device: str = "cpu") -> ModelPolicy:
     config_path = run_dir / "config.toml"
     training_env: dict = {}
     if config_path.exists():
-        try:
-            saved = tomllib.loads(config_path.read_text())
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{config_path}: invalid TOML: {exc}") from None
+        saved = read_run_config(config_path)
         algo = str(saved.get("algorithm", {}).get("name", "")).upper()
         if algo:
             names = [algo]
