@@ -1,6 +1,6 @@
 """Speed of the ship-task environments: build time and env steps per second (process time).
 
-For CourseKeeping-v1 and CapsizeAvoidance-v2 (default S175 mesh unless ``--coarse``): the
+For CourseKeeping-v2 and CapsizeAvoidance-v2 (default S175 mesh unless ``--coarse``): the
 first build in this process (hull, database, state-space fit, GZ curve, Nomoto identification,
 numba cache load), a second build (cached prototype, deep copy), then random-action steps of
 the single env and of the vector env with N = 16, timed with ``time.process_time()`` (CPU time
@@ -62,7 +62,7 @@ def main(argv: list[str] | None = None) -> dict:
     kwargs = {"hull_mesh": (24, 6, 3, 2)} if args.coarse else {}
     results = {}
     for name, env_cls, vec_cls in (
-        ("CourseKeeping-v1", CourseKeepingEnv, CourseKeepingVectorEnv),
+        ("CourseKeeping-v2", CourseKeepingEnv, CourseKeepingVectorEnv),
         ("CapsizeAvoidance-v2", CapsizeAvoidanceEnv, CapsizeAvoidanceVectorEnv),
     ):
         r = _measure(env_cls, vec_cls, kwargs, args.steps, args.num_envs)

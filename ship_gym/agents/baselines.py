@@ -288,6 +288,11 @@ class PIDAutopilot(Baseline):
     Default gains are :meth:`ship_gym.control.autopilot.HeadingAutopilot.from_nomoto` for an
     S175-like Nomoto model (K ≈ 0.05 1/s, T ≈ 20 s) at ω_n = 0.06 rad/s, ζ = 0.9, divided by the
     35° rudder limit: k_p = 1.44 rad/rad → 2.4, k_d = 23 s → 38, k_i = 0.0086 1/s → 0.014.
+    :data:`DEFAULT_GAINS` holds CourseKeeping-v2's: the autopilot placed on the Nomoto model
+    identified from the S175's own models (:func:`ship_gym.engine.ship.heading_autopilot`; at
+    ω_n 0.06, ζ 0.9 it gives 1.48, 35.8, 0.0089), with ω_n 0.06 rad/s and ζ 0.7 chosen by
+    ``scripts/tune_baseline.py CourseKeeping`` (the best v2 return on training seeds 0–23,
+    docs/benchmarks/CourseKeeping_baseline.json).
     The integral is clamped to ±``integral_limit`` (anti-windup) [rad·s].
 
     Attributes
@@ -335,12 +340,16 @@ class PIDAutopilot(Baseline):
 class RollFinController(Baseline):
     """Classical PD roll stabiliser on the fins: a = −(k_roll φ + k_rate p) (action units).
 
-    Also drives any roll-moment actuator named ``"roll moment"`` (RollOneDOF-v0). Defaults:
-    for the S175 fins (±25°), the rate gain k_p ≈ 3 s of fin angle per roll rate (adds ≈ 0.3 of
-    critical damping, :meth:`ship_gym.control.stabilisers.FinController.tuned`) → 7 action
-    units/(rad/s); the angle gain is small (k_φ ≈ 0.2 C₄₄/K_δ → 1 action unit/rad). For
-    RollOneDOF-v0 (moment ±0.03 rad/s², wave moment up to 0.05 rad/s²) the damping must saturate
-    early: :data:`DEFAULT_GAINS` sets k_rate = 20, k_roll = 2.
+    Also drives any roll-moment actuator named ``"roll moment"`` (RollOneDOF-v0). The class
+    defaults (k_roll 1, k_rate 7) are a light stabiliser: on the S175 fins (±25°) they add ≈ 0.11
+    of critical roll damping (the design of :func:`ship_gym.engine.ship.fin_stabiliser`,
+    k_p = 2 ζ_add √(C₄₄ (I₄₄ + A₄₄)) / K_δ, gives 61 action units/(rad/s) per unit ζ_add and
+    k_φ = c_add C₄₄/K_δ 10.8 action units/rad per unit c_add). :data:`DEFAULT_GAINS` holds the
+    tuned gains per env: RollStabilization-v2 ζ_add 0.8, c_add 0.5 → k_rate 48.8, k_roll 5.4
+    (``scripts/tune_baseline.py RollStabilization``: the best v2 return on training seeds
+    0–23, docs/benchmarks/RollStabilization_baseline.json); RollOneDOF-v0 (moment ±0.03
+    rad/s², wave moment up to 0.05 rad/s²: the damping must saturate early) k_rate 20,
+    k_roll 2.
 
     Attributes
     ----------
@@ -645,6 +654,12 @@ BASELINES: Mapping[str, type[Baseline]] = {
 
 DEFAULT_GAINS: Mapping[tuple[str, str], Mapping[str, float]] = {
     ("fins", "RollOneDOF"): {"k_roll": 2.0, "k_rate": 20.0},
+    # scripts/tune_baseline.py RollStabilization (docs/benchmarks/RollStabilization_baseline.json):
+    # fin_stabiliser at ζ_add 0.8, c_add 0.5
+    ("fins", "RollStabilization"): {"k_roll": 5.4, "k_rate": 48.8},
+    # scripts/tune_baseline.py CourseKeeping (docs/benchmarks/CourseKeeping_baseline.json):
+    # heading_autopilot at ω_n 0.06 rad/s, ζ 0.7
+    ("pid", "CourseKeeping"): {"k_p": 1.479, "k_d": 25.98, "k_i": 0.00887},
 }
 """Per-env default gains: (baseline name, env name without namespace/version) → gains."""
 

@@ -66,14 +66,14 @@ class BenchmarkTask:
 
 TASKS: dict[str, BenchmarkTask] = {
     "CourseKeeping": BenchmarkTask(
-        "ship_gym/CourseKeeping-v1",
+        "ship_gym/CourseKeeping-v2",
         "rms_heading_error_deg",
         "RMS heading error [deg]",
         ("zero", "pid"),
         ("ppo_course_keeping",),
     ),
     "RollStabilization": BenchmarkTask(
-        "ship_gym/RollStabilization-v1",
+        "ship_gym/RollStabilization-v2",
         "rms_roll_deg",
         "RMS roll [deg]",
         ("zero", "fins"),
@@ -104,13 +104,21 @@ TASKS: dict[str, BenchmarkTask] = {
 """The benchmark's tasks by name."""
 
 
-def _run_is_complete(run: Path, timesteps: int) -> bool:
+def _run_is_complete(run: Path, timesteps: int, env_id: str) -> bool:
+    """A finished training run of ``env_id`` (a run of an earlier version of the env, e.g.
+    RollStabilization-v1 under a v2 benchmark, is not reused) with ≥ ``timesteps`` steps."""
+    from ship_gym.envs.saved_policies import read_run_config
+
     summary = run / "summary.json"
     if not (summary.is_file() and (run / "model.zip").is_file()):
         return False
     try:
-        return int(json.loads(summary.read_text())["num_timesteps"]) >= timesteps
-    except (ValueError, KeyError):
+        trained_on = read_run_config(run / "config.toml")["env"]["id"]
+        return (
+            trained_on == env_id
+            and int(json.loads(summary.read_text())["num_timesteps"]) >= timesteps
+        )
+    except (ValueError, KeyError, OSError):
         return False
 
 
@@ -246,7 +254,7 @@ def run_benchmark(
                     progress_bar=progress,
                     tensorboard=False,
                 )
-                if _run_is_complete(run, config.total_timesteps):
+                if _run_is_complete(run, config.total_timesteps, config.env_id):
                     report(f"{name}/{config_name}/seed{k}: reusing the finished run")
                 else:
                     report(f"{name}/{config_name}/seed{k}: training {config.total_timesteps} steps")
@@ -326,6 +334,13 @@ def results_markdown(results: dict[str, Any]) -> str:
         "strongest baseline on the task metric at equal or lower effort. Written by "
         "`ship-gym benchmark` (rerun it to reproduce; `ship-gym evaluate --policies "
         "model:docs/benchmarks/policies/<task>/<config>` evaluates a shipped policy).",
+        "",
+        "The classical baselines are designed from the ship's own linear model and tuned on "
+        "training seeds by a script: the fin stabiliser and the heading autopilot by "
+        "`scripts/tune_baseline.py RollStabilization|CourseKeeping` (grids in "
+        "`<task>_baseline_tuning.csv`, choice and held-out check in `<task>_baseline.json`), "
+        "the CapsizeAvoidance master by `scripts/tune_capsize_master.py` "
+        "(`capsize_master.json`).",
         "",
     ]
     for name, task in results["tasks"].items():

@@ -345,21 +345,33 @@ def build_force_models(
     return [*models, *control], commands
 
 
+def _propulsion_and_manoeuvring(setup: ShipSetup, hull: Hull) -> tuple[list[ForceModel], dict]:
+    """Resistance and propeller (with the self-propulsion shaft speed as initial command) and
+    the hull manoeuvring forces, as the setup asks."""
+    out: list[ForceModel] = []
+    commands: dict = {}
+    if setup.propulsion:
+        propeller = ship_of(setup).propeller()
+        out += [propeller.resistance or CalmWaterResistance.from_hull(hull), propeller]
+        commands["shaft_speed"] = propeller.shaft_speed_for(setup.speed)
+    if setup.manoeuvring:
+        out.append(HullManoeuvring.from_hull(hull))
+    return out, commands
+
+
+def _lhs_added_mass(models: list[ForceModel]) -> np.ndarray:
+    """(6, 6) added mass the models put on the left-hand side [kg, kg·m, kg·m²]."""
+    return sum((m.added_mass for m in models if m.added_mass is not None), np.zeros((6, 6)))
+
+
 def _control_models(
     setup: ShipSetup, hull: Hull, database: xr.Dataset, wave_models: list[ForceModel]
 ) -> tuple[list[ForceModel], dict]:
     """Propulsion, manoeuvring and actuated surfaces (evaluated after the wave forces; the
     propeller before the rudder, which reads its thrust from ``ctx.shared``)."""
-    out: list[ForceModel] = []
-    commands: dict = {}
     ship = ship_of(setup)
-    if setup.propulsion:
-        propeller = ship.propeller()
-        out += [propeller.resistance or CalmWaterResistance.from_hull(hull), propeller]
-        commands["shaft_speed"] = propeller.shaft_speed_for(setup.speed)
-    if setup.manoeuvring:
-        out.append(HullManoeuvring.from_hull(hull))
-    a_lhs = sum((m.added_mass for m in wave_models if m.added_mass is not None), np.zeros((6, 6)))
+    out, commands = _propulsion_and_manoeuvring(setup, hull)
+    a_lhs = _lhs_added_mass(wave_models)
     mass = hull.mass.rigid_body_matrix() + a_lhs
     # the loading's own restoring (the hull at its free-floating equilibrium), not the
     # database's: a cached database carries the stiffness of whichever loading built it
@@ -378,8 +390,7 @@ def _control_models(
         fins = ship.fins()
         controller = None
         if setup.fins == "controller":
-            k_delta = control_derivative(fins, "fins", 3, max(setup.speed, 1.0))
-            controller = FinController.tuned(k_delta, c[3, 3], mass[3, 3])
+            controller = _fin_controller(fins, setup.speed, c[3, 3], mass[3, 3])
         out.append(Actuated(fins, FIN_SERVO, "fins", controller=controller))
     if setup.t_foil != "none":
         foil = ship.t_foil()
@@ -396,6 +407,101 @@ def _control_models(
             )
         out.append(Actuated(foil, FOIL_SERVO, "t_foil", controller=controller))
     return out, commands
+
+
+def _fin_controller(
+    fins: ForceModel, speed: float, c44: float, i44_total: float, **design: float
+) -> FinController:
+    """:meth:`FinController.tuned` (``design``: its fractions) with K_δ = ∂K/∂δ of ``fins`` at
+    ``speed`` (≥ 1 m/s)."""
+    k_delta = control_derivative(fins, "fins", 3, max(speed, 1.0))
+    return FinController.tuned(k_delta, c44, i44_total, **design)
+
+
+def fin_stabiliser(
+    setup: ShipSetup, *, added_damping: float = 0.3, added_stiffness: float = 0.2
+) -> FinController:
+    """The classical PD fin stabiliser of ``setup``'s ship, designed from its own linear roll
+    model (:meth:`ship_gym.control.stabilisers.FinController.tuned`).
+
+    The model is the one ``fins="controller"`` builds: K_δ = ∂K/∂δ of the ship's fins at the
+    setup's speed, C₄₄ of the loading at its free-floating equilibrium and I₄₄ + A₄₄ (the
+    rigid-body inertia about O and the radiation models' left-hand-side added inertia).
+
+    Parameters
+    ----------
+    setup : ShipSetup
+        Ship, loading, speed and radiation model (its ``fins`` field is not read).
+    added_damping : float
+        ζ_add, the fraction of critical roll damping the rate gain adds [-].
+    added_stiffness : float
+        c_add, the fraction of C₄₄ the angle gain adds [-].
+
+    Returns
+    -------
+    FinController
+        Gains k_φ [rad/rad] and k_p [rad·s/rad] on the fin angle.
+    """
+    if not (np.isfinite(added_damping) and added_damping >= 0.0):
+        raise ValueError(f"added_damping must be a fraction >= 0 [-], got {added_damping!r}")
+    if not (np.isfinite(added_stiffness) and added_stiffness >= 0.0):
+        raise ValueError(f"added_stiffness must be a fraction >= 0 [-], got {added_stiffness!r}")
+    ship = ship_of(setup)
+    hull = ship.hull
+    database = database_of(setup, ship)
+    bare = dataclasses.replace(
+        setup, rudder="none", fins="none", t_foil="none", propulsion=False, manoeuvring=False
+    )
+    wave_models, _ = build_force_models(bare, hull, database, None, None, np.pi)
+    a_lhs = _lhs_added_mass(wave_models)
+    eq = equilibrium(hull)
+    c44 = float(hydrostatics(hull, heave=eq.heave, trim=eq.trim).stiffness[3, 3])
+    i44_total = float(hull.mass.rigid_body_matrix()[3, 3] + a_lhs[3, 3])
+    design = {"added_damping": added_damping, "added_stiffness": added_stiffness}
+    return _fin_controller(ship.fins(), setup.speed, c44, i44_total, **design)
+
+
+def heading_autopilot(
+    setup: ShipSetup, *, natural_frequency: float = 0.06, damping: float = 0.9
+) -> HeadingAutopilot:
+    """The PID heading autopilot of ``setup``'s ship, placed on the Nomoto model identified from
+    its own manoeuvring, propulsion and rudder models at the setup's speed
+    (:meth:`ship_gym.control.autopilot.HeadingAutopilot.from_nomoto`; the autopilot
+    ``rudder="autopilot"`` builds at the defaults).
+
+    Parameters
+    ----------
+    setup : ShipSetup
+        Ship, loading, speed and radiation model (its ``rudder`` field is not read).
+    natural_frequency : float
+        Closed-loop ω_n [rad/s].
+    damping : float
+        Closed-loop ζ [-].
+
+    Returns
+    -------
+    HeadingAutopilot
+        Gains K_p [-], K_d [s], K_i [1/s] on the rudder angle.
+    """
+    if not (np.isfinite(natural_frequency) and natural_frequency > 0.0):
+        raise ValueError(f"natural_frequency must be positive [rad/s], got {natural_frequency!r}")
+    if not (np.isfinite(damping) and damping > 0.0):
+        raise ValueError(f"damping must be positive [-], got {damping!r}")
+    ship = ship_of(setup)
+    hull = ship.hull
+    bare = dataclasses.replace(setup, rudder="none", fins="none", t_foil="none")
+    models, _ = build_force_models(bare, hull, database_of(setup, ship), None, None, np.pi)
+    steering, commands = _propulsion_and_manoeuvring(setup, hull)
+    nomoto = nomoto_from_models(
+        hull,
+        [*steering, ship.rudder()],
+        setup.speed,
+        added_mass=_lhs_added_mass(models),
+        commands=commands,
+    )
+    return HeadingAutopilot.from_nomoto(
+        nomoto, natural_frequency=natural_frequency, damping=damping
+    )
 
 
 def build_simulator(

@@ -1,4 +1,4 @@
-"""``ship_gym/CourseKeeping-v1``: steer the S175 on a heading in irregular seas with its rudder.
+"""``ship_gym/CourseKeeping-v2``: steer the S175 on a heading in irregular seas with its rudder.
 
 The task (:class:`CourseKeepingTask`) runs on :class:`ship_gym.envs.env_task.ShipEnvTask`; the
 Gymnasium faces are :class:`CourseKeepingEnv` (one episode) and :class:`CourseKeepingVectorEnv`
@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
-from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
+from ship_gym.envs.docstrings import VERSION_HISTORY, env_docstring, vector_env_docstring
 from ship_gym.envs.env_task import (
     RUDDER_LIMIT_DEG,
     S175_MESH,
@@ -67,6 +67,8 @@ class CourseKeepingTask(ShipEnvTask):
         heading_weight: float = 1.0,
         heading_scale_deg: float = 10.0,
         rudder_weight: float = 0.1,
+        rudder_rate_weight: float = 0.1,
+        heading_integral_time_s: float = 100.0,
         roll_weight: float = 0.1,
         roll_scale_deg: float = 10.0,
         capsize_penalty: float = 100.0,
@@ -94,6 +96,10 @@ class CourseKeepingTask(ShipEnvTask):
             check_positive("heading_scale_deg", heading_scale_deg, "deg", 180.0)
         )
         self.rudder_weight = check_weight("rudder_weight", rudder_weight)
+        self.rudder_rate_weight = check_weight("rudder_rate_weight", rudder_rate_weight)
+        self.integral_time = check_positive(
+            "heading_integral_time_s", heading_integral_time_s, "s", 3600.0
+        )
         self.roll_weight = check_weight("roll_weight", roll_weight)
         self.roll_scale = math.radians(
             check_positive("roll_scale_deg", roll_scale_deg, "deg", 90.0)
@@ -113,9 +119,16 @@ class CourseKeepingTask(ShipEnvTask):
                 ("heading [rad]", -math.pi, math.pi),
                 ("heading set-point [rad]", -math.pi, math.pi),
                 ("rudder command [rad]", -self.rudder_limit, self.rudder_limit),
+                ("heading error integral [rad s]", -10.0 * math.pi, 10.0 * math.pi),
+                ("rudder travel over the last step [rate limit x step]", -1.0, 1.0),
             ),
             **ship_kwargs(args),
         )
+        n = self.num_envs
+        self.heading_integral = np.zeros(n)
+        self._rudder_before = np.zeros(n)
+        self._max_travel = self._rudder.servo.max_rate * self.control_dt
+        self._integral_decay = math.exp(-self.control_dt / self.integral_time)
 
     # ------------------------------------------------------------------ hooks
     task_reset_options = ("heading_setpoint_deg",)
@@ -128,9 +141,17 @@ class CourseKeepingTask(ShipEnvTask):
         if "heading_setpoint_deg" in self._task_options:
             e = math.radians(self._task_options["heading_setpoint_deg"])
         self.heading_setpoint[i] = e  # the ship starts heading north (ψ = 0)
+        self.heading_integral[i] = 0.0
+        self._rudder_before[i] = 0.0
         return {"heading_setpoint_deg": math.degrees(e)}
 
+    def rudder_travel(self) -> NDArray:
+        """(N,) rudder servo travel over the last control step as a fraction of the most the
+        steering gear can travel in one (rate limit × control step) [-], in [−1, 1]."""
+        return (self._rudder.angle - self._rudder_before) / self._max_travel
+
     def _apply_actions(self, actions: NDArray) -> None:
+        self._rudder_before[:] = self._rudder.angle
         cmd = self.commands["rudder_command"]
         if self.rudder_mode == "absolute":
             cmd[:] = actions[:, 0] * self.rudder_limit
@@ -141,12 +162,22 @@ class CourseKeepingTask(ShipEnvTask):
     def _write_extra_observations(self, out: NDArray) -> None:
         # wrap(ψ), wrap(ψ_ref), the rudder command
         write_heading_observations(self, 0.0, self.commands["rudder_command"], out)
+        out[:, 3] = self.heading_integral
+        out[:, 4] = self.rudder_travel()
 
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
         delta = self._rudder.angle  # the servo angle (read only)
+        # the leaky integral of the error after the step (exact for e held over the step):
+        # I ← I e^(−Δt/τ) + τ (1 − e^(−Δt/τ)) e
+        e = self._current_heading_error()
+        decay = self._integral_decay
+        self.heading_integral[:] = (
+            self.heading_integral * decay + self.integral_time * (1.0 - decay) * e
+        )
         return {
             "heading": self.heading_term(self.heading_weight, self.heading_scale),
             "rudder": -self.rudder_weight * (delta / self.rudder_limit) ** 2,
+            "rudder_rate": -self.rudder_rate_weight * self.rudder_travel() ** 2,
             "roll": self.roll_term(stats, self.roll_weight, self.roll_scale),
         }
 
@@ -160,10 +191,22 @@ _ARGUMENTS: dict[str, tuple[str, str]] = {
     "rudder_mode": ("-", '"absolute" angle or "increment" per step'),
     "max_rudder_increment_deg": ("deg", "increment at a = ±1 (increment mode)"),
     "rudder_weight": ("-", "weight of the rudder term"),
+    "rudder_rate_weight": ("-", "weight of the rudder-travel (steering gear wear) term"),
+    "heading_integral_time_s": ("s", "time constant τ of the observed heading-error integral"),
 }
 
 
-@env_docstring(_ARGUMENTS)
+@env_docstring(
+    _ARGUMENTS,
+    (
+        *VERSION_HISTORY,
+        "v2: the steering gear's travel costs (−rudder_rate_weight · (Δδ/(δ̇_max Δt))², 0.1 by "
+        "default: v1's PPO flipped the rudder's sign on 37 % of the steps); a leaky integral of "
+        "the heading error (τ = 100 s) and the rudder travel over the last step are observed "
+        "(v1's PPO kept a steady error of ≈ 0.9° that an integral removes, and the servo lags "
+        "its command by up to 15 s at 2.32 °/s).",
+    ),
+)
 class CourseKeepingEnv(TaskEnv):
     """Keep the S175 container ship on a heading in irregular seas with its rudder.
 
@@ -176,7 +219,9 @@ class CourseKeepingEnv(TaskEnv):
     the Cummins kernel), linear diffraction, Ikeda viscous roll damping, Holtrop resistance and
     a B-series propeller at the self-propulsion rpm, hull manoeuvring forces, and a rudder
     behind an IMO-minimum steering gear (±35°, 2.32 °/s). The agent commands the rudder to hold
-    the heading set-point while keeping rudder effort and roll low. A capsize ends the episode.
+    the heading set-point while keeping rudder effort, steering-gear travel (wear) and roll low.
+    Every reward term is normalised by a scale, so its weight is its cost at the scale. A
+    capsize ends the episode.
 
     ## Action Space
 
@@ -193,7 +238,9 @@ class CourseKeepingEnv(TaskEnv):
     | 14 | heading ψ (wrapped) | rad | ±π |
     | 15 | heading set-point ψ_ref (wrapped) | rad | ±π |
     | 16 | rudder command | rad | ±0.611 |
-    | 17… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
+    | 17 | heading-error integral I, İ = e − I/τ (τ = ``heading_integral_time_s``) | rad·s | ±10π |
+    | 18 | rudder travel over the last control step Δδ/(δ̇_max Δt) | - | ±1 |
+    | 19… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
 
     ``sensor_noise`` adds Gaussian noise of ``sensor_noise`` × the accuracies of
     :data:`ship_gym.envs.ship_task.SENSOR_NOISE_STD` (0.1 m on the preview).
@@ -204,6 +251,9 @@ class CourseKeepingEnv(TaskEnv):
 
     * ``heading`` = −heading_weight · (e/heading_scale)², e the wrapped heading error;
     * ``rudder`` = −rudder_weight · (δ/35°)², δ the servo rudder angle;
+    * ``rudder_rate`` = −rudder_rate_weight · (Δδ/(δ̇_max Δt))², Δδ the servo travel over the
+      control step Δt, δ̇_max = 2.32 °/s (1 = moving at the steering gear's limit the whole
+      step);
     * ``roll`` = −roll_weight · mean(φ²)/roll_scale² over the physics steps of the control step;
     * ``capsize`` = −capsize_penalty in the step the ship capsizes.
 

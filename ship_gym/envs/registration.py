@@ -1,7 +1,7 @@
 """The registered environment ids (``ship_gym/<Name>-vN``) and their entry points.
 
 Gymnasium 1.x does not read package entry points: ``import ship_gym`` calls
-:func:`register_envs`, and ``gymnasium.make("ship_gym:ship_gym/CourseKeeping-v1")`` imports
+:func:`register_envs`, and ``gymnasium.make("ship_gym:ship_gym/CourseKeeping-v2")`` imports
 ``ship_gym`` first (the ``module:`` prefix), so the ids work in a fresh interpreter. Entry points
 are strings: registering imports no environment module (and no simulator).
 
@@ -59,8 +59,8 @@ class EnvEntry:
 
 
 ENTRIES: tuple[EnvEntry, ...] = (
-    EnvEntry("CourseKeeping", "course_keeping", 1000, 1),
-    EnvEntry("RollStabilization", "roll_stabilisation", 1000, 1),
+    EnvEntry("CourseKeeping", "course_keeping", 1000, 2),
+    EnvEntry("RollStabilization", "roll_stabilisation", 1000, 2),
     EnvEntry("RideControl", "ride_control", 1000, 1),
     EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500, 2),
     EnvEntry("RollOneDOF", "roll_one_dof", 1000, 0),

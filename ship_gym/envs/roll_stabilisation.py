@@ -1,4 +1,4 @@
-"""``ship_gym/RollStabilization-v1``: reduce the roll of the S175 in beam and quartering seas.
+"""``ship_gym/RollStabilization-v2``: reduce the roll of the S175 in beam and quartering seas.
 
 The task (:class:`RollStabilizationTask`) runs on :class:`ship_gym.envs.env_task.ShipEnvTask` with
 the comfort bookkeeping of :class:`ComfortShipTask` (accelerations at a passenger point,
@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 
 from ship_gym.comfort.metrics import ComfortSample, PassengerComfort
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
-from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
+from ship_gym.envs.docstrings import VERSION_HISTORY, env_docstring, vector_env_docstring
 from ship_gym.envs.env_task import (
     RUDDER_LIMIT_DEG,
     S175_MESH,
@@ -99,6 +99,10 @@ class ComfortShipTask(ShipEnvTask):
             g=float(self.sim.hull.g),
         )
         self.sample = self._zero_sample()
+        self._angles_before = np.zeros((n, len(self.actuators)))
+        self._max_travel = np.array(
+            [m.servo.max_rate * self.control_dt for m in self._actuator_models]
+        )
 
     def _zero_sample(self) -> ComfortSample:
         z = np.zeros(self.num_envs)
@@ -108,13 +112,20 @@ class ComfortShipTask(ShipEnvTask):
         """(N, n_actuators) servo angles of the commanded surfaces [rad]."""
         return np.column_stack([m.angle for m in self._actuator_models])
 
+    def actuator_travel(self) -> NDArray:
+        """(N, n_actuators) servo travel over the last control step as a fraction of the most
+        the servo can travel in one (rate limit × control step) [-], in [−1, 1]."""
+        return (self.actuator_angles() - self._angles_before) / self._max_travel
+
     def _apply_surface_actions(self, actions: NDArray) -> None:
+        self._angles_before[:] = self.actuator_angles()
         for j, (key, _, limit) in enumerate(self.actuators):
             self.commands[key][:] = actions[:, j] * limit
 
     def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
         for key, _, _ in self.actuators:
             self.commands[key][i] = 0.0
+        self._angles_before[i] = 0.0
         nu = np.zeros(6)
         nu[0] = self.initial_speed[i]  # ShipTask resets ν = (U_i, 0, …)
         self.comfort.reset([i], nu)
@@ -185,7 +196,8 @@ class RollStabilizationTask(ComfortShipTask):
         roll_rate_scale_dps: float = 2.0,
         lateral_weight: float = 0.5,
         lateral_scale_mps2: float = 1.0,
-        effort_weight: float = 0.05,
+        effort_weight: float = 0.2,
+        fin_rate_weight: float = 0.2,
         heading_weight: float = 0.5,
         heading_scale_deg: float = 10.0,
         capsize_penalty: float = 100.0,
@@ -208,6 +220,7 @@ class RollStabilizationTask(ComfortShipTask):
         self.lateral_weight = check_weight("lateral_weight", lateral_weight)
         self.lateral_scale = check_positive("lateral_scale_mps2", lateral_scale_mps2, "m/s²", 50)
         self.effort_weight = check_weight("effort_weight", effort_weight)
+        self.fin_rate_weight = check_weight("fin_rate_weight", fin_rate_weight)
         self.heading_weight = check_weight("heading_weight", heading_weight)
         self.heading_scale = math.radians(
             check_positive("heading_scale_deg", heading_scale_deg, "deg", 180.0)
@@ -233,6 +246,8 @@ class RollStabilizationTask(ComfortShipTask):
             extra_observations=(
                 ("fin angle [rad]", -math.pi / 2, math.pi / 2),
                 ("lateral specific force at the passenger [m/s^2]", -30.0, 30.0),
+                ("fin command [rad]", -fin_limit, fin_limit),
+                ("fin travel over the last step [rate limit x step]", -1.0, 1.0),
             ),
             **ship_kwargs(args),
         )
@@ -247,6 +262,8 @@ class RollStabilizationTask(ComfortShipTask):
     def _write_extra_observations(self, out: NDArray) -> None:
         out[:, 0] = self._actuator_models[0].angle
         out[:, 1] = self.sample.lateral
+        out[:, 2] = self.commands["fins_command"]
+        out[:, 3] = self.actuator_travel()[:, 0]
 
     def _comfort_reward_terms(
         self, stats: StepStatistics, sample: ComfortSample
@@ -255,11 +272,13 @@ class RollStabilizationTask(ComfortShipTask):
         effort = (self._actuator_models[0].angle / self.fin_limit) ** 2
         if self.rudder_roll_stabilization:
             effort = effort + (self._rudder.angle / self.rudder_limit) ** 2
+        travel = self.actuator_travel()[:, 0]
         terms = {
             "roll": self.roll_term(stats, self.roll_weight, self.roll_scale),
             "roll_rate": -self.roll_rate_weight * (p / self.roll_rate_scale) ** 2,
             "lateral": -self.lateral_weight * (sample.lateral / self.lateral_scale) ** 2,
             "effort": -self.effort_weight * effort,
+            "fin_rate": -self.fin_rate_weight * travel**2,
         }
         if self.rudder_roll_stabilization:
             terms["heading"] = self.heading_term(self.heading_weight, self.heading_scale)
@@ -283,10 +302,21 @@ _ARGUMENTS: dict[str, tuple[str, str]] = {
     "lateral_weight": ("-", "weight of the lateral-force term"),
     "lateral_scale_mps2": ("m/s²", "lateral specific force scale"),
     "heading_weight": ("-", "weight of the heading term (rudder roll stabilisation)"),
+    "fin_rate_weight": ("-", "weight of the fin-travel (wear) term"),
 }
 
 
-@env_docstring(_ARGUMENTS)
+@env_docstring(
+    _ARGUMENTS,
+    (
+        *VERSION_HISTORY,
+        "v2: the fins cost what a real stabiliser's do — a fin-travel (wear) term "
+        "−fin_rate_weight · (Δδ/(δ̇_max Δt))², 0.2 by default, and effort_weight 0.2 (v1: "
+        "0.05, under which PPO held the fins at their limit on 67 % of the steps); the fin "
+        "command and the fin travel over the last step are observed (the servo lags the "
+        "command: with the angle alone the task was not Markov in the actuator).",
+    ),
+)
 class RollStabilizationEnv(TaskEnv):
     """Reduce the roll of the S175 container ship in beam and quartering seas with roll fins.
 
@@ -302,7 +332,9 @@ class RollStabilizationEnv(TaskEnv):
     with ``rudder_roll_stabilization=True``, the rudder, then also keeping the course); without
     it the PID heading autopilot holds the course. The reward penalises roll, roll rate and the
     lateral specific force at a passenger point (the lateral force estimator of Graham 1990,
-    :mod:`ship_gym.comfort.metrics`), and actuator effort. A capsize ends the episode.
+    :mod:`ship_gym.comfort.metrics`), actuator effort and fin travel (wear: a stabiliser that
+    chatters at its rate limit wears its seals and bearings). Every term is normalised by a
+    scale, so its weight is its cost at the scale. A capsize ends the episode.
 
     ## Action Space
 
@@ -318,7 +350,9 @@ class RollStabilizationEnv(TaskEnv):
     {ship_observations}
     | 14 | fin angle (servo) | rad | ±π/2 |
     | 15 | lateral specific force f_y at the passenger point | m/s² | ±30 |
-    | 16… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
+    | 16 | fin command δ_c (the servo follows it at ≤ 15 °/s) | rad | ±0.436 |
+    | 17 | fin travel over the last control step Δδ/(δ̇_max Δt) | - | ±1 |
+    | 18… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
 
     The accelerations at the passenger point use ν̇ from the backward difference of ν over the
     control step (:class:`ship_gym.comfort.metrics.PassengerComfort`).
@@ -332,6 +366,9 @@ class RollStabilizationEnv(TaskEnv):
     * ``lateral`` = −lateral_weight · (f_y/lateral_scale)², f_y the lateral specific force at
       the passenger point (eq. 2 of :mod:`ship_gym.comfort.metrics`);
     * ``effort`` = −effort_weight · [(δ_fin/25°)² (+ (δ_R/35°)² with the rudder)];
+    * ``fin_rate`` = −fin_rate_weight · (Δδ_fin/(δ̇_max Δt))², Δδ_fin the servo travel over the
+      control step Δt and δ̇_max = 15 °/s its rate limit (1 = travelling at the limit the whole
+      step: fin wear);
     * ``heading`` (only with ``rudder_roll_stabilization``) = −heading_weight ·
       (e/heading_scale)²;
     * ``capsize`` = −capsize_penalty in the step the ship capsizes.

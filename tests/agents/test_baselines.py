@@ -284,3 +284,33 @@ def test_master_refuses_bad_parameters():
     with pytest.raises(ValueError, match="observation 'relative wave heading cos'"):
         make_baseline("imo-guidance", roll)
     roll.close()
+
+
+def test_roll_stabilization_fins_are_the_tuned_design_of_the_ships_own_model():
+    # DEFAULT_GAINS for RollStabilization are scripts/tune_baseline.py's choice (ζ_add 0.8,
+    # c_add 0.5) of the design fin_stabiliser makes from the S175's linear roll model, in action
+    # units (δ/25°); rounded to 3 digits, so 1 % (a changed model or fin would move them more)
+    from ship_gym.engine.ship import fin_stabiliser
+    from ship_gym.envs.roll_stabilisation import FIN_LIMIT_DEG
+
+    env = gymnasium.make("ship_gym/RollStabilization-v2")  # the per-env gains follow the id
+    design = fin_stabiliser(env.unwrapped.task.setup, added_damping=0.8, added_stiffness=0.5)
+    fins = make_baseline("fins", env)
+    limit = math.radians(FIN_LIMIT_DEG)
+    assert fins.k_rate == pytest.approx(design.k_rate / limit, rel=0.01)
+    assert fins.k_roll == pytest.approx(design.k_roll / limit, rel=0.01)
+
+
+def test_course_keeping_pid_is_the_tuned_autopilot_of_the_ships_own_nomoto_model():
+    # DEFAULT_GAINS for CourseKeeping: heading_autopilot at ω_n 0.06 rad/s, ζ 0.7 (the tuning
+    # script's choice) in action units (δ/35°), rounded to 4 digits: 0.1 %
+    from ship_gym.engine.ship import heading_autopilot
+    from ship_gym.envs.env_task import RUDDER_LIMIT_DEG
+
+    env = gymnasium.make("ship_gym/CourseKeeping-v2")
+    design = heading_autopilot(env.unwrapped.task.setup, natural_frequency=0.06, damping=0.7)
+    pid = make_baseline("pid", env)
+    limit = math.radians(RUDDER_LIMIT_DEG)
+    assert pid.k_p == pytest.approx(design.kp / limit, rel=1e-3)
+    assert pid.k_d == pytest.approx(design.kd / limit, rel=1e-3)
+    assert pid.k_i == pytest.approx(design.ki / limit, rel=1e-3)

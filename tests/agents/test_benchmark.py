@@ -67,6 +67,17 @@ def test_shipped_policy_reproduces_its_row_and_a_rerun_reuses_the_runs(tiny, tmp
     assert "## Other (`ship_gym/Other-v0`)" in (out / "results.md").read_text()
 
 
+def test_a_run_of_another_env_version_or_a_shorter_budget_is_not_reused(tiny):
+    from ship_gym.agents.benchmark import _run_is_complete
+
+    out, _, _ = tiny
+    run = out / "runs" / "RollOneDOF" / "ppo_roll_one_dof" / "seed0"
+    assert _run_is_complete(run, 512, "ship_gym/RollOneDOF-v0")
+    assert not _run_is_complete(run, 512, "ship_gym/RollOneDOF-v1")  # an env version bump
+    assert not _run_is_complete(run, 10**6, "ship_gym/RollOneDOF-v0")  # a larger budget
+    assert not _run_is_complete(out / "runs" / "missing", 512, "ship_gym/RollOneDOF-v0")
+
+
 def test_bad_arguments_are_refused(tmp_path):
     with pytest.raises(ValueError, match="unknown task 'Sailing'"):
         run_benchmark(["Sailing"], tmp_path)

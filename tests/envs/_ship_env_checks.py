@@ -54,13 +54,15 @@ class ShipEnvCase:
 
 SHIP_ENVS: dict[str, ShipEnvCase] = {
     "CourseKeeping": ShipEnvCase(
-        CourseKeepingEnv, CourseKeepingVectorEnv, ("heading", "rudder", "roll", "capsize")
+        CourseKeepingEnv,
+        CourseKeepingVectorEnv,
+        ("heading", "rudder", "rudder_rate", "roll", "capsize"),
     ),
     # noise and wave preview: observation entries beyond the common ones, seeded noise
     "CourseKeeping-noise-preview": ShipEnvCase(
         CourseKeepingEnv,
         CourseKeepingVectorEnv,
-        ("heading", "rudder", "roll", "capsize"),
+        ("heading", "rudder", "rudder_rate", "roll", "capsize"),
         {**COARSE, "sensor_noise": 1.0, "wave_preview_m": (50.0, 100.0)},
     ),
     # regular waves (one component)
@@ -73,12 +75,12 @@ SHIP_ENVS: dict[str, ShipEnvCase] = {
     "RollStabilization": ShipEnvCase(
         RollStabilizationEnv,
         RollStabilizationVectorEnv,
-        ("roll", "roll_rate", "lateral", "effort", "capsize"),
+        ("roll", "roll_rate", "lateral", "effort", "fin_rate", "capsize"),
     ),
     "RollStabilization-rudder": ShipEnvCase(
         RollStabilizationEnv,
         RollStabilizationVectorEnv,
-        ("roll", "roll_rate", "lateral", "effort", "heading", "capsize"),
+        ("roll", "roll_rate", "lateral", "effort", "fin_rate", "heading", "capsize"),
         {**COARSE, "rudder_roll_stabilization": True},
     ),
     "RideControl": ShipEnvCase(

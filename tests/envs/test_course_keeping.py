@@ -1,4 +1,4 @@
-"""ship_gym/CourseKeeping-v1: rewards, termination, arguments, rudder modes.
+"""ship_gym/CourseKeeping-v2: rewards, termination, arguments, rudder modes.
 
 The checks every ship environment passes (checkers, seeding, reward = Σ terms, vector env,
 actions, time limit) are parametrised in test_ship_task.py; the coarse mesh is described in

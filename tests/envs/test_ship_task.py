@@ -272,6 +272,8 @@ def test_arguments_table_takes_the_defaults_from_the_signature():
         "initial_heading_error_deg": ("deg", "set-point range"),
         "rudder_mode": ("-", "mode"),
         "max_rudder_increment_deg": ("deg", "increment"),
+        "rudder_rate_weight": ("-", "weight"),
+        "heading_integral_time_s": ("s", "τ"),
     }
     with pytest.raises(ValueError, match="rudder_weight"):
         arguments_table(CourseKeepingTask, own)  # an undocumented keyword argument

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from ship_gym.comfort.metrics import PassengerComfort
+from ship_gym.control.actuators import FIN_SERVO
 from ship_gym.envs.base import TaskEnv, TaskStep, TaskVectorEnv, validate_actions
 from ship_gym.envs.capsize_avoidance import CapsizeAvoidanceTask
 from ship_gym.envs.course_keeping import CourseKeepingTask
@@ -132,7 +133,13 @@ class _ReferenceStep:
 
 
 class ReferenceCourseKeepingTask(_ReferenceStep, CourseKeepingTask):
+    def _travel(self):
+        return (self.rudder_angle() - self._rudder_before) / (
+            self._rudder.servo.max_rate * self.control_dt
+        )
+
     def _apply_actions(self, actions):
+        self._rudder_before[:] = self.rudder_angle()
         cmd = self.commands["rudder_command"]
         if self.rudder_mode == "absolute":
             cmd[:] = actions[:, 0] * self.rudder_limit
@@ -151,14 +158,22 @@ class ReferenceCourseKeepingTask(_ReferenceStep, CourseKeepingTask):
                 (psi + math.pi) % (2.0 * math.pi) - math.pi,
                 (self.heading_setpoint + math.pi) % (2.0 * math.pi) - math.pi,
                 self.commands["rudder_command"],
+                self.heading_integral,
+                self._travel(),
             ]
         )
 
     def _reward_terms(self, stats):
         delta = self.rudder_angle()
+        decay = math.exp(-self.control_dt / self.integral_time)
+        self.heading_integral[:] = (
+            self.heading_integral * decay
+            + self.integral_time * (1.0 - decay) * self.heading_error()
+        )
         return {
             "heading": self.heading_term(self.heading_weight, self.heading_scale),
             "rudder": -self.rudder_weight * (delta / self.rudder_limit) ** 2,
+            "rudder_rate": -self.rudder_rate_weight * self._travel() ** 2,
             "roll": self.roll_term(stats, self.roll_weight, self.roll_scale),
         }
 
@@ -173,8 +188,20 @@ class _ReferenceComfort(_ReferenceStep):
 
 
 class ReferenceRollStabilizationTask(_ReferenceComfort, RollStabilizationTask):
+    def _travel(self):
+        return (self.actuator_angles()[:, 0] - self._angles_before[:, 0]) / (
+            FIN_SERVO.max_rate * self.control_dt
+        )
+
     def _extra_observations(self):
-        return np.column_stack([self.actuator_angles()[:, 0], self.sample.lateral])
+        return np.column_stack(
+            [
+                self.actuator_angles()[:, 0],
+                self.sample.lateral,
+                self.commands["fins_command"],
+                self._travel(),
+            ]
+        )
 
     def _comfort_reward_terms(self, stats, sample):
         p = self.sim.nu[:, 3]
@@ -186,6 +213,7 @@ class ReferenceRollStabilizationTask(_ReferenceComfort, RollStabilizationTask):
             "roll_rate": -self.roll_rate_weight * (p / self.roll_rate_scale) ** 2,
             "lateral": -self.lateral_weight * (sample.lateral / self.lateral_scale) ** 2,
             "effort": -self.effort_weight * effort,
+            "fin_rate": -self.fin_rate_weight * self._travel() ** 2,
         }
         if self.rudder_roll_stabilization:
             terms["heading"] = self.heading_term(self.heading_weight, self.heading_scale)

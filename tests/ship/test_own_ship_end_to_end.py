@@ -19,8 +19,8 @@ from ship_gym.ship import DatabaseMismatchError, load_ship
 from ship_gym.ship.database_cache import cache_path, cached_database
 
 SHIP_ENV_IDS = (
-    "ship_gym/CourseKeeping-v1",
-    "ship_gym/RollStabilization-v1",
+    "ship_gym/CourseKeeping-v2",
+    "ship_gym/RollStabilization-v2",
     "ship_gym/RideControl-v1",
     "ship_gym/CapsizeAvoidance-v2",
 )
