@@ -54,6 +54,14 @@ class BenchmarkTask:
         Classical baselines (:data:`ship_gym.agents.baselines.BASELINES` names).
     configs : tuple of str
         Shipped training configs.
+    timesteps : int or None
+        Training budget per run of the published table (``docs/benchmarks/results.md``), so that
+        ``ship-gym benchmark`` without ``--timesteps`` reproduces it; None: each config's own
+        ``total_timesteps``.
+    episodes : int
+        Held-out episodes per policy of the published table.
+    env_kwargs : dict
+        Environment keyword arguments of every policy's episodes.
     """
 
     env_id: str
@@ -61,6 +69,8 @@ class BenchmarkTask:
     metric_label: str
     baselines: tuple[str, ...]
     configs: tuple[str, ...]
+    timesteps: int | None = None
+    episodes: int = 40
     env_kwargs: dict = field(default_factory=dict)
 
 
@@ -71,6 +81,7 @@ TASKS: dict[str, BenchmarkTask] = {
         "RMS heading error [deg]",
         ("zero", "pid"),
         ("ppo_course_keeping",),
+        500_000,
     ),
     "RollStabilization": BenchmarkTask(
         "ship_gym/RollStabilization-v2",
@@ -78,6 +89,7 @@ TASKS: dict[str, BenchmarkTask] = {
         "RMS roll [deg]",
         ("zero", "fins"),
         ("ppo_roll_stabilization",),
+        500_000,
     ),
     "RideControl": BenchmarkTask(
         "ship_gym/RideControl-v1",
@@ -85,6 +97,7 @@ TASKS: dict[str, BenchmarkTask] = {
         "RMS vertical acceleration [m/s²]",
         ("zero", "ride"),
         ("sac_ride_control",),
+        100_000,  # a third of the shipped 300 k: SAC runs at ≈ 150–200 steps/s
     ),
     "CapsizeAvoidance": BenchmarkTask(
         "ship_gym/CapsizeAvoidance-v2",
@@ -92,6 +105,8 @@ TASKS: dict[str, BenchmarkTask] = {
         "capsize rate [-]",
         ("zero", "imo-guidance"),
         ("ppo_capsize_avoidance", "ppo_lagrangian_capsize_avoidance"),
+        400_000,
+        60,
     ),
     "RollOneDOF": BenchmarkTask(
         "ship_gym/RollOneDOF-v0",
@@ -154,7 +169,7 @@ def _row(label: str, metrics: dict, task: BenchmarkTask, training: dict | None) 
 
 
 def check_benchmark_arguments(
-    tasks: Sequence[str], *, n_seeds: int, timesteps: int | None, episodes: int, seed: int
+    tasks: Sequence[str], *, n_seeds: int, timesteps: int | None, episodes: int | None, seed: int
 ) -> None:
     """Refuse bad benchmark arguments before any work (ValueError naming the argument): unknown
     tasks, non-positive counts, held-out seeds that overlap a training run's seeds."""
@@ -166,7 +181,7 @@ def check_benchmark_arguments(
             f"tasks: {'unknown task ' + repr(unknown[0]) if unknown else 'none given'}; "
             f"expected some of {sorted(TASKS)}"
         )
-    for name, value in (("n_seeds", n_seeds), ("episodes", episodes)):
+    for name, value in (("n_seeds", n_seeds), ("episodes", 1 if episodes is None else episodes)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValueError(f"{name} must be a positive integer, got {value!r}")
     if timesteps is not None and (not isinstance(timesteps, int) or timesteps < 1):
@@ -187,7 +202,7 @@ def run_benchmark(
     *,
     n_seeds: int = 3,
     timesteps: int | None = None,
-    episodes: int = 40,
+    episodes: int | None = None,
     seed: int = 10_000,
     progress: bool = True,
     report: Callable[[str], None] = print,
@@ -203,9 +218,11 @@ def run_benchmark(
     n_seeds : int
         Training seeds per config (0 … n_seeds − 1).
     timesteps : int, optional
-        Training budget per run (default: each config's ``total_timesteps``).
-    episodes : int
-        Held-out evaluation episodes per policy.
+        Training budget per run, for every task (default: each task's
+        :attr:`BenchmarkTask.timesteps`, else its configs' ``total_timesteps``).
+    episodes : int, optional
+        Held-out evaluation episodes per policy, for every task (default: each task's
+        :attr:`BenchmarkTask.episodes`).
     seed : int
         First held-out seed.
     progress : bool
@@ -234,10 +251,12 @@ def run_benchmark(
             report(f"{previous}: unreadable, rewritten")
     for name in tasks:
         task = TASKS[name]
+        budget = timesteps if timesteps is not None else task.timesteps
+        n_episodes = episodes if episodes is not None else task.episodes
         rows: list[dict] = []
         curves: dict[str, list[dict]] = {}
         base = evaluate_policies(
-            task.env_id, list(task.baselines), episodes, seed, task.env_kwargs, progress=progress
+            task.env_id, list(task.baselines), n_episodes, seed, task.env_kwargs, progress=progress
         )
         for label, metrics in base["policies"].items():
             rows.append(_row(label, metrics, task, None))
@@ -250,7 +269,7 @@ def run_benchmark(
                     config_name,
                     seed=k,
                     output_dir=str(run),
-                    total_timesteps=timesteps,
+                    total_timesteps=budget,
                     progress_bar=progress,
                     tensorboard=False,
                 )
@@ -261,7 +280,7 @@ def run_benchmark(
                     train(config)
                 summary = json.loads((run / "summary.json").read_text())
                 ev = evaluate_policies(
-                    task.env_id, [f"model:{run}"], episodes, seed, progress=progress
+                    task.env_id, [f"model:{run}"], n_episodes, seed, progress=progress
                 )
                 metrics = next(iter(ev["policies"].values()))
                 training = {
@@ -282,9 +301,9 @@ def run_benchmark(
         results["tasks"][name].update(
             curves=curves,
             seed=seed,
-            episodes=episodes,
+            episodes=n_episodes,
             n_seeds=n_seeds,
-            timesteps=timesteps,
+            timesteps=budget,
             date=time.strftime("%Y-%m-%d"),
         )
         _plot_curves(name, task, curves, out / f"curves_{name}.png")

@@ -98,8 +98,19 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         help="comma-separated, of " + ", ".join(TASKS),
     )
     p.add_argument("--seeds", type=count, default=3, help="training seeds per config")
-    p.add_argument("--timesteps", type=count, default=None, help="override each config's budget")
-    p.add_argument("--episodes", type=count, default=40, help="held-out episodes per policy")
+    p.add_argument(
+        "--timesteps",
+        type=count,
+        default=None,
+        help="training budget per run (default: the published table's per task)",
+    )
+    p.add_argument(
+        "--episodes",
+        type=count,
+        default=None,
+        help="held-out episodes per policy (default: the published table's, 40; 60 for "
+        "CapsizeAvoidance)",
+    )
     p.add_argument("--seed", type=seed, default=10_000, help="first held-out seed")
     p.add_argument("--out", default="docs/benchmarks", help="output folder")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")

@@ -102,6 +102,23 @@ def test_every_task_names_registered_ids_baselines_and_shipped_configs():
             assert load_config(name).env_id == task.env_id
 
 
+def test_the_published_table_is_what_the_default_command_reruns():
+    # `ship-gym benchmark` without --timesteps trains each task at TASKS[task].timesteps: the
+    # budget of every task in docs/benchmarks/results.json must be that one (else the one
+    # command would not reproduce the table)
+    from pathlib import Path
+
+    root = Path(__file__).parents[2] / "docs" / "benchmarks"
+    published = json.loads((root / "results.json").read_text())["tasks"]
+    assert {"CourseKeeping", "RollStabilization", "RideControl", "CapsizeAvoidance"} <= set(
+        published
+    )
+    for name, task in published.items():
+        assert task["env_id"] == TASKS[name].env_id, name
+        assert task["timesteps"] == TASKS[name].timesteps, name
+        assert task["episodes"] == TASKS[name].episodes, name
+
+
 def _shipped_policies():
     from pathlib import Path
 
