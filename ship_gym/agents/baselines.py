@@ -33,6 +33,7 @@ controller does not drive is 0. Outputs are clipped to [-1, 1].
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from collections.abc import Mapping, Sequence
@@ -664,8 +665,11 @@ DEFAULT_GAINS: Mapping[tuple[str, str], Mapping[str, float]] = {
 """Per-env default gains: (baseline name, env name without namespace/version) → gains."""
 
 
-def make_baseline(name: str, env: Any, **gains: float) -> Baseline:
+def make_baseline(name: str, env: Any, *, env_id: str | None = None, **gains: float) -> Baseline:
     """Baseline ``name`` (a key of :data:`BASELINES`) for ``env``, with per-env default gains.
+
+    ``env_id`` names the registered env when ``env`` does not carry its spec (an SB3 VecEnv);
+    it selects the default gains and is kept in the baseline's layout.
 
     Raises
     ------
@@ -675,6 +679,8 @@ def make_baseline(name: str, env: Any, **gains: float) -> Baseline:
     if name not in BASELINES:
         raise ValueError(f"unknown baseline {name!r}; expected one of {sorted(BASELINES)}")
     layout = env_layout(env)
+    if env_id is not None:
+        layout = dataclasses.replace(layout, env_id=env_id)
     env_name = (layout.env_id or "").split("/")[-1].split("-v")[0]
     merged = {**DEFAULT_GAINS.get((name, env_name), {}), **gains}
     return BASELINES[name](layout=layout, **merged)

@@ -15,7 +15,8 @@ For each task (:data:`TASKS`) the benchmark
    training), ``<out>/results.json``, a learning-curve figure per task
    (``<out>/curves_<task>.png``: mean return of the last 100 training episodes against time
    steps, one line per seed), and copies the best training seed of every config into
-   ``<out>/policies/<task>/<config>/`` (``model.zip``, ``vecnormalize.pkl``, ``config.toml``), so
+   ``<out>/policies/<task>/<config>/`` (``model.zip``, ``vecnormalize.pkl``, ``config.toml``,
+   ``residual.json`` of a residual policy), so
    that ``ship-gym evaluate --policies model:<that folder>`` reproduces the table without
    training.
 
@@ -80,7 +81,7 @@ TASKS: dict[str, BenchmarkTask] = {
         "rms_heading_error_deg",
         "RMS heading error [deg]",
         ("zero", "pid"),
-        ("ppo_course_keeping",),
+        ("ppo_course_keeping", "ppo_residual_course_keeping"),
         500_000,
     ),
     "RollStabilization": BenchmarkTask(
@@ -316,7 +317,9 @@ def run_benchmark(
 
 def _ship_policy(run: Path, to: Path) -> None:
     to.mkdir(parents=True, exist_ok=True)
-    for name in ("model.zip", "vecnormalize.pkl", "config.toml", "summary.json"):
+    from ship_gym.agents.residual import RESIDUAL_FILE
+
+    for name in ("model.zip", "vecnormalize.pkl", "config.toml", "summary.json", RESIDUAL_FILE):
         if (run / name).is_file():
             shutil.copy2(run / name, to / name)
 

@@ -41,6 +41,7 @@ import gymnasium
 import numpy as np
 from numpy.typing import NDArray
 
+from ship_gym.agents.residual import load_agent_policy
 from ship_gym.envs.saved_policies import ModelPolicy, load_policy
 
 __all__ = [
@@ -49,6 +50,7 @@ __all__ = [
     "ModelPolicy",
     "Policy",
     "evaluate_policies",
+    "load_agent_policy",
     "load_policy",
     "policy_labels",
     "run_episodes",
@@ -356,7 +358,7 @@ def _policy_factory(spec: str, device: str = "cpu") -> tuple[str, Any]:
     spec = spec.strip()
     if spec.startswith("model:"):
         path = spec[len("model:") :]
-        policy = load_policy(path, device=device)
+        policy = load_agent_policy(path, device=device)
         return policy_labels([spec])[0], policy
     if spec in BASELINES:
         return spec, lambda env, name=spec: make_baseline(name, env)

@@ -29,6 +29,10 @@ Configuration (a TOML file, or the name of one shipped in :mod:`ship_gym.agents.
     torch_threads = 1             # optional: torch CPU threads (small MLPs: 1 is fastest and
                                   #   leaves the cores to the environment)
 
+    [residual]                    # optional: learn a correction of a classical controller,
+    baseline = "pid"              #   a = clip(a_pid + scale · a_learned)
+    scale = 0.5                   #   (ship_gym.agents.residual; [residual.gains] overrides)
+
     [safe]                        # optional: constrained RL on info["cost"] (PPO-Lagrangian)
     cost_limit = 5.0              # budget of the expected episode cost [control steps]
     lagrangian_lr = 0.05          # multiplier step; also lambda_init = 0, lambda_max = 100
@@ -39,9 +43,10 @@ copy of the configuration actually used, with command-line overrides), ``vecnorm
 ``normalize`` is on, the tensorboard logs, ``progress.csv`` (the learning curve: after every
 rollout the time steps, wall time, mean return, length and cost of the last 100 episodes, and
 λ) and ``summary.json`` (time steps, wall time, steps/s, last mean episode return and cost,
-final λ). With a ``[safe]`` table the reward is shaped by a Lagrange multiplier on the cost
+final λ), and ``residual.json`` (the baseline with all its gains) for a residual run. With a
+``[safe]`` table the reward is shaped by a Lagrange multiplier on the cost
 (:mod:`ship_gym.agents.lagrangian`). All files are written atomically.
-:func:`ship_gym.envs.saved_policies.load_policy` reads the directory back.
+:func:`ship_gym.agents.residual.load_agent_policy` reads the directory back.
 """
 
 from __future__ import annotations
@@ -57,6 +62,7 @@ from typing import Any
 
 from ship_gym.agents.configs import find_config
 from ship_gym.agents.lagrangian import SafeConfig, safe_config
+from ship_gym.agents.residual import ResidualConfig, residual_config
 
 __all__ = ["TrainConfig", "load_config", "make_training_env", "train"]
 
@@ -86,6 +92,7 @@ class TrainConfig:
     device: str = "cpu"
     torch_threads: int | None = None
     safe: SafeConfig | None = None
+    residual: ResidualConfig | None = None
     raw: Mapping[str, Any] = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
@@ -117,6 +124,7 @@ _KNOWN = {
     "env": {"id", "n_envs", "vectorization", "normalize", "kwargs"},
     "algorithm": {"name", "policy", "hyperparameters", "policy_kwargs"},
     "safe": {"cost_limit", "lagrangian_lr", "lambda_init", "lambda_max"},
+    "residual": {"baseline", "scale", "gains"},
     "training": {
         "total_timesteps",
         "seed",
@@ -165,6 +173,7 @@ def config_from_mapping(data: Mapping[str, Any]) -> TrainConfig:
         device=str(training.get("device", "cpu")),
         torch_threads=training.get("torch_threads"),
         safe=safe_config(data["safe"]) if "safe" in data else None,
+        residual=residual_config(data["residual"]) if "residual" in data else None,
         raw=copy.deepcopy(dict(data)),
     )
 
@@ -197,7 +206,8 @@ def load_config(path: str | Path, **overrides: Any) -> TrainConfig:
 
 
 def make_training_env(config: TrainConfig) -> Any:
-    """The SB3 VecEnv of a config: batched adapter or DummyVecEnv, VecMonitor, VecNormalize."""
+    """The SB3 VecEnv of a config: batched adapter or DummyVecEnv, VecMonitor, the residual
+    wrapper (raw observations), cost shaping, VecNormalize."""
     from stable_baselines3.common.vec_env import VecNormalize
 
     from ship_gym.envs.sb3 import make_sb3_vec_env
@@ -209,6 +219,10 @@ def make_training_env(config: TrainConfig) -> Any:
         vectorization=config.vectorization,
         env_kwargs=dict(config.env_kwargs),
     )
+    if config.residual is not None:
+        from ship_gym.agents.residual import residual_vec_env
+
+        venv, _ = residual_vec_env(venv, config.residual, config.env_id)
     if config.safe is not None:  # r − λc, between the monitor (true returns) and the normaliser
         from ship_gym.agents.lagrangian import make_cost_shaped
 
@@ -326,6 +340,11 @@ def train(config: TrainConfig) -> Path:
     out.mkdir(parents=True, exist_ok=True)
     atomic_write_text(out / "config.toml", dump_toml(config.raw))
     venv = make_training_env(config)
+    if config.residual is not None:
+        from ship_gym.agents.residual import find_residual, save_residual
+
+        wrapper = find_residual(venv)
+        save_residual(out, wrapper.baseline, wrapper.scale)
     algo_class = getattr(stable_baselines3, config.algorithm)
     kwargs = dict(config.hyperparameters)
     if config.policy_kwargs:

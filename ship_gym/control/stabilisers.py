@@ -145,11 +145,15 @@ class RideController:
         c55: float,
         i55_total: float,
         *,
-        added_damping: float = 0.2,
+        heave_damping: float = 0.2,
+        pitch_damping: float = 0.2,
     ) -> RideController:
-        """Gains adding ``added_damping`` of critical damping in heave and in pitch."""
-        k_w = 2 * added_damping * np.sqrt(c33 * m33_total) / abs(heave_force_per_rad)
-        k_q = 2 * added_damping * np.sqrt(c55 * i55_total) / abs(pitch_moment_per_rad)
+        """Gains adding ``heave_damping`` of critical damping in heave and ``pitch_damping`` in
+        pitch, each as if the foil acted on that mode alone: k_w = 2 ζ_3 √(C₃₃ (m + A₃₃)) / Z_δ,
+        k_q = 2 ζ_5 √(C₅₅ (I₅₅ + A₅₅)) / M_δ (Z_δ, M_δ the foil's heave force and pitch moment
+        per radian of foil angle [N/rad, N·m/rad])."""
+        k_w = 2 * heave_damping * np.sqrt(c33 * m33_total) / abs(heave_force_per_rad)
+        k_q = 2 * pitch_damping * np.sqrt(c55 * i55_total) / abs(pitch_moment_per_rad)
         return cls(k_heave=float(k_w), k_pitch=float(k_q))
 
     def gains(self) -> FloatArray:

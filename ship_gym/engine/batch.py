@@ -796,6 +796,11 @@ def _healthy_rows(q, v, z, v_max, ok):  # pragma: no cover - compiled
 # =============================================================================================
 # the simulator
 # =============================================================================================
+def _servo_driven(model: Any) -> bool:
+    """A batch force model with a servo and the angle it has reached (an actuator)."""
+    return getattr(model, "servo", None) is not None and hasattr(model, "angle")
+
+
 class BatchSimulator:
     """N ships of one hull and setup, each in its own sea, stepped together (module docstring).
 
@@ -1609,10 +1614,15 @@ class BatchSimulator:
         """
         return self.actuator_model(name).angle.copy()
 
+    def actuator_names(self) -> tuple[str, ...]:
+        """Names of the servo-driven batch force models (rudder, fins, T-foil…), in force
+        order (each is :meth:`actuator_model`)."""
+        return tuple(f.name for f in self.forces if _servo_driven(f))
+
     def actuator_model(self, name: str):
         """The servo-driven batch force model named ``name``."""
         for f in self.forces:
-            if f.name == name and getattr(f, "servo", None) is not None and hasattr(f, "angle"):
+            if f.name == name and _servo_driven(f):
                 return f
         raise ValueError(
             f"no servo-driven force model named {name!r}; the models are "

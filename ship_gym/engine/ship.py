@@ -396,15 +396,7 @@ def _control_models(
         foil = ship.t_foil()
         controller = None
         if setup.t_foil == "controller":
-            u = max(setup.speed, 1.0)
-            controller = RideController.tuned(
-                control_derivative(foil, "t_foil", 2, u),
-                control_derivative(foil, "t_foil", 4, u),
-                c[2, 2],
-                mass[2, 2],
-                c[4, 4],
-                mass[4, 4],
-            )
+            controller = _ride_controller(foil, setup.speed, c, mass)
         out.append(Actuated(foil, FOIL_SERVO, "t_foil", controller=controller))
     return out, commands
 
@@ -446,19 +438,77 @@ def fin_stabiliser(
         raise ValueError(f"added_damping must be a fraction >= 0 [-], got {added_damping!r}")
     if not (np.isfinite(added_stiffness) and added_stiffness >= 0.0):
         raise ValueError(f"added_stiffness must be a fraction >= 0 [-], got {added_stiffness!r}")
+    mass, stiffness = _linear_inertia_and_stiffness(setup)
+    design = {"added_damping": added_damping, "added_stiffness": added_stiffness}
+    return _fin_controller(
+        ship_of(setup).fins(), setup.speed, stiffness[3, 3], mass[3, 3], **design
+    )
+
+
+def _linear_inertia_and_stiffness(setup: ShipSetup) -> tuple[np.ndarray, np.ndarray]:
+    """(6, 6) total inertia M_RB + A_lhs (the radiation models' left-hand-side added inertia)
+    and hydrostatic stiffness of the loading at its free-floating equilibrium: what the
+    simulator's controllers are designed on (:func:`_control_models`)."""
     ship = ship_of(setup)
     hull = ship.hull
-    database = database_of(setup, ship)
     bare = dataclasses.replace(
         setup, rudder="none", fins="none", t_foil="none", propulsion=False, manoeuvring=False
     )
-    wave_models, _ = build_force_models(bare, hull, database, None, None, np.pi)
-    a_lhs = _lhs_added_mass(wave_models)
+    wave_models, _ = build_force_models(bare, hull, database_of(setup, ship), None, None, np.pi)
     eq = equilibrium(hull)
-    c44 = float(hydrostatics(hull, heave=eq.heave, trim=eq.trim).stiffness[3, 3])
-    i44_total = float(hull.mass.rigid_body_matrix()[3, 3] + a_lhs[3, 3])
-    design = {"added_damping": added_damping, "added_stiffness": added_stiffness}
-    return _fin_controller(ship.fins(), setup.speed, c44, i44_total, **design)
+    stiffness = hydrostatics(hull, heave=eq.heave, trim=eq.trim).stiffness
+    return hull.mass.rigid_body_matrix() + _lhs_added_mass(wave_models), stiffness
+
+
+def _ride_controller(
+    foil: ForceModel, speed: float, stiffness: np.ndarray, mass: np.ndarray, **design: float
+) -> RideController:
+    """:meth:`RideController.tuned` (``design``: its damping fractions) with the heave force
+    and pitch moment per radian of ``foil`` at ``speed`` (≥ 1 m/s) and the (6, 6) stiffness and
+    total inertia."""
+    u = max(speed, 1.0)
+    return RideController.tuned(
+        control_derivative(foil, "t_foil", 2, u),
+        control_derivative(foil, "t_foil", 4, u),
+        stiffness[2, 2],
+        mass[2, 2],
+        stiffness[4, 4],
+        mass[4, 4],
+        **design,
+    )
+
+
+def ride_controller(
+    setup: ShipSetup, *, heave_damping: float = 0.2, pitch_damping: float = 0.2
+) -> RideController:
+    """The classical T-foil ride controller of ``setup``'s ship, designed from its own linear
+    heave and pitch model (:meth:`ship_gym.control.stabilisers.RideController.tuned`; the one
+    ``t_foil="controller"`` builds at the defaults).
+
+    The model: the foil's heave force and pitch moment per radian at the setup's speed, C₃₃ and
+    C₅₅ of the loading at its free-floating equilibrium, m + A₃₃ and I₅₅ + A₅₅ (rigid-body
+    inertia and the radiation models' left-hand-side added inertia).
+
+    Parameters
+    ----------
+    setup : ShipSetup
+        Ship, loading, speed and radiation model (its ``t_foil`` field is not read).
+    heave_damping : float
+        ζ_3, the fraction of critical heave damping the heave-velocity gain adds [-].
+    pitch_damping : float
+        ζ_5, the fraction of critical pitch damping the pitch-rate gain adds [-].
+
+    Returns
+    -------
+    RideController
+        Gains k_w [rad/(m/s)] and k_q [rad/(rad/s)] on the foil angle.
+    """
+    for name, value in (("heave_damping", heave_damping), ("pitch_damping", pitch_damping)):
+        if not (np.isfinite(value) and value >= 0.0):
+            raise ValueError(f"{name} must be a fraction >= 0 [-], got {value!r}")
+    mass, stiffness = _linear_inertia_and_stiffness(setup)
+    design = {"heave_damping": heave_damping, "pitch_damping": pitch_damping}
+    return _ride_controller(ship_of(setup).t_foil(), setup.speed, stiffness, mass, **design)
 
 
 def heading_autopilot(

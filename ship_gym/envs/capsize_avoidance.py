@@ -132,7 +132,7 @@ class CapsizeAvoidanceTask(ShipEnvTask):
         danger_weight: float = 1.0,
         capsize_penalty: float = 100.0,
         sensor_noise: float = 0.0,
-        wave_preview_m: Sequence[float] = (),
+        wave_preview_m: Sequence[float] | Sequence[Sequence[float]] = (),
     ) -> None:
         args = dict(locals())  # the arguments, forwarded by name (ship_kwargs)
         check_real("froude_number", froude_number, low=0.05, high=0.5, unit="-")
@@ -379,7 +379,7 @@ class CapsizeAvoidanceEnv(TaskEnv):
     | 18 | λ/L, λ = g T_W²/2π (deep water) | - | 0 … 20 |
     | 19 | H/L (H of a regular wave, Hs of a spectrum) | - | 0 … 0.5 |
     | 20 | roll natural period T_R of the episode's loading (T_R,nom √(GM_nom/GM)) | s | 0 … 100 |
-    | 21… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
+    | 21… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     ## Rewards
 

@@ -73,7 +73,7 @@ class CourseKeepingTask(ShipEnvTask):
         roll_scale_deg: float = 10.0,
         capsize_penalty: float = 100.0,
         sensor_noise: float = 0.0,
-        wave_preview_m: Sequence[float] = (),
+        wave_preview_m: Sequence[float] | Sequence[Sequence[float]] = (),
     ) -> None:
         args = dict(locals())  # the arguments, forwarded by name (ship_kwargs, irregular_sea)
         if rudder_mode not in ("absolute", "increment"):
@@ -126,8 +126,6 @@ class CourseKeepingTask(ShipEnvTask):
         )
         n = self.num_envs
         self.heading_integral = np.zeros(n)
-        self._rudder_before = np.zeros(n)
-        self._max_travel = self._rudder.servo.max_rate * self.control_dt
         self._integral_decay = math.exp(-self.control_dt / self.integral_time)
 
     # ------------------------------------------------------------------ hooks
@@ -142,16 +140,9 @@ class CourseKeepingTask(ShipEnvTask):
             e = math.radians(self._task_options["heading_setpoint_deg"])
         self.heading_setpoint[i] = e  # the ship starts heading north (ψ = 0)
         self.heading_integral[i] = 0.0
-        self._rudder_before[i] = 0.0
         return {"heading_setpoint_deg": math.degrees(e)}
 
-    def rudder_travel(self) -> NDArray:
-        """(N,) rudder servo travel over the last control step as a fraction of the most the
-        steering gear can travel in one (rate limit × control step) [-], in [−1, 1]."""
-        return (self._rudder.angle - self._rudder_before) / self._max_travel
-
     def _apply_actions(self, actions: NDArray) -> None:
-        self._rudder_before[:] = self._rudder.angle
         cmd = self.commands["rudder_command"]
         if self.rudder_mode == "absolute":
             cmd[:] = actions[:, 0] * self.rudder_limit
@@ -163,7 +154,7 @@ class CourseKeepingTask(ShipEnvTask):
         # wrap(ψ), wrap(ψ_ref), the rudder command
         write_heading_observations(self, 0.0, self.commands["rudder_command"], out)
         out[:, 3] = self.heading_integral
-        out[:, 4] = self.rudder_travel()
+        out[:, 4] = self.servo_travel("rudder")
 
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
         delta = self._rudder.angle  # the servo angle (read only)
@@ -177,7 +168,7 @@ class CourseKeepingTask(ShipEnvTask):
         return {
             "heading": self.heading_term(self.heading_weight, self.heading_scale),
             "rudder": -self.rudder_weight * (delta / self.rudder_limit) ** 2,
-            "rudder_rate": -self.rudder_rate_weight * self.rudder_travel() ** 2,
+            "rudder_rate": -self.rudder_rate_weight * self.servo_travel("rudder") ** 2,
             "roll": self.roll_term(stats, self.roll_weight, self.roll_scale),
         }
 
@@ -240,7 +231,7 @@ class CourseKeepingEnv(TaskEnv):
     | 16 | rudder command | rad | ±0.611 |
     | 17 | heading-error integral I, İ = e − I/τ (τ = ``heading_integral_time_s``) | rad·s | ±10π |
     | 18 | rudder travel over the last control step Δδ/(δ̇_max Δt) | - | ±1 |
-    | 19… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
+    | 19… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     ``sensor_noise`` adds Gaussian noise of ``sensor_noise`` × the accuracies of
     :data:`ship_gym.envs.ship_task.SENSOR_NOISE_STD` (0.1 m on the preview).

@@ -64,7 +64,7 @@ SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
     "capsize_penalty": ("-", "penalty paid at capsize"),
     "comfort_time_constant_s": ("s", "time constant of the running acceleration RMS"),
     "sensor_noise": ("-", "multiplier of the sensor accuracies (SENSOR_NOISE_STD)"),
-    "wave_preview_m": ("m", "distances ahead of O of the elevation preview"),
+    "wave_preview_m": ("m", "elevation preview: distances ahead of O, or (x, y) body-frame points"),
 }
 """Unit and meaning of the keyword arguments shared by the ship environments (the rows of the
 ``## Arguments`` tables; :func:`env_docstring` takes each default from the task's signature)."""

@@ -301,7 +301,7 @@ class ShipEnvTask(ShipTask, abc.ABC):
         num_threads: int = 1,
         capsize_penalty: float,
         sensor_noise: float,
-        wave_preview_m: Sequence[float],
+        wave_preview_m: Sequence[float] | Sequence[Sequence[float]],
         kg_m: float | None = None,
         speed_range_mps: tuple[float, float] | None = None,
         gm_range_m: tuple[float, float] | None = None,

@@ -68,7 +68,7 @@ class RideControlTask(ComfortShipTask):
         vertical_rms_limit_g: float = 0.05,
         comfort_time_constant_s: float = 30.0,
         sensor_noise: float = 0.0,
-        wave_preview_m: Sequence[float] = (),
+        wave_preview_m: Sequence[float] | Sequence[Sequence[float]] = (),
     ) -> None:
         args = dict(locals())  # the arguments, forwarded by name (ship_kwargs, irregular_sea)
         self.vertical_weight = check_weight("vertical_weight", vertical_weight)
@@ -180,7 +180,7 @@ class RideControlEnv(TaskEnv):
     {ship_observations}
     | 14 | T-foil angle (servo) | rad | ±π/2 |
     | 15 | earth-vertical acceleration at the passenger point (down positive) | m/s² | ±30 |
-    | 16… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
+    | 16… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     The accelerations at the passenger point use ν̇ from the backward difference of ν over the
     control step (:class:`ship_gym.comfort.metrics.PassengerComfort`).

@@ -99,10 +99,6 @@ class ComfortShipTask(ShipEnvTask):
             g=float(self.sim.hull.g),
         )
         self.sample = self._zero_sample()
-        self._angles_before = np.zeros((n, len(self.actuators)))
-        self._max_travel = np.array(
-            [m.servo.max_rate * self.control_dt for m in self._actuator_models]
-        )
 
     def _zero_sample(self) -> ComfortSample:
         z = np.zeros(self.num_envs)
@@ -112,20 +108,13 @@ class ComfortShipTask(ShipEnvTask):
         """(N, n_actuators) servo angles of the commanded surfaces [rad]."""
         return np.column_stack([m.angle for m in self._actuator_models])
 
-    def actuator_travel(self) -> NDArray:
-        """(N, n_actuators) servo travel over the last control step as a fraction of the most
-        the servo can travel in one (rate limit × control step) [-], in [−1, 1]."""
-        return (self.actuator_angles() - self._angles_before) / self._max_travel
-
     def _apply_surface_actions(self, actions: NDArray) -> None:
-        self._angles_before[:] = self.actuator_angles()
         for j, (key, _, limit) in enumerate(self.actuators):
             self.commands[key][:] = actions[:, j] * limit
 
     def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
         for key, _, _ in self.actuators:
             self.commands[key][i] = 0.0
-        self._angles_before[i] = 0.0
         nu = np.zeros(6)
         nu[0] = self.initial_speed[i]  # ShipTask resets ν = (U_i, 0, …)
         self.comfort.reset([i], nu)
@@ -203,7 +192,7 @@ class RollStabilizationTask(ComfortShipTask):
         capsize_penalty: float = 100.0,
         comfort_time_constant_s: float = 60.0,
         sensor_noise: float = 0.0,
-        wave_preview_m: Sequence[float] = (),
+        wave_preview_m: Sequence[float] | Sequence[Sequence[float]] = (),
     ) -> None:
         args = dict(locals())  # the arguments, forwarded by name (ship_kwargs, irregular_sea)
         if not isinstance(rudder_roll_stabilization, bool):
@@ -263,7 +252,7 @@ class RollStabilizationTask(ComfortShipTask):
         out[:, 0] = self._actuator_models[0].angle
         out[:, 1] = self.sample.lateral
         out[:, 2] = self.commands["fins_command"]
-        out[:, 3] = self.actuator_travel()[:, 0]
+        out[:, 3] = self.servo_travel("roll_fins")
 
     def _comfort_reward_terms(
         self, stats: StepStatistics, sample: ComfortSample
@@ -272,7 +261,7 @@ class RollStabilizationTask(ComfortShipTask):
         effort = (self._actuator_models[0].angle / self.fin_limit) ** 2
         if self.rudder_roll_stabilization:
             effort = effort + (self._rudder.angle / self.rudder_limit) ** 2
-        travel = self.actuator_travel()[:, 0]
+        travel = self.servo_travel("roll_fins")
         terms = {
             "roll": self.roll_term(stats, self.roll_weight, self.roll_scale),
             "roll_rate": -self.roll_rate_weight * (p / self.roll_rate_scale) ** 2,
@@ -352,7 +341,7 @@ class RollStabilizationEnv(TaskEnv):
     | 15 | lateral specific force f_y at the passenger point | m/s² | ±30 |
     | 16 | fin command δ_c (the servo follows it at ≤ 15 °/s) | rad | ±0.436 |
     | 17 | fin travel over the last control step Δδ/(δ̇_max Δt) | - | ±1 |
-    | 18… | incident elevation at ``wave_preview_m`` ahead (if any) | m | ±30 |
+    | 18… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     The accelerations at the passenger point use ν̇ from the backward difference of ν over the
     control step (:class:`ship_gym.comfort.metrics.PassengerComfort`).

@@ -37,7 +37,7 @@ Python loop in :meth:`ShipTask.step`):
 * **observations** — float32, names with units (:attr:`ShipTask.observation_names`), clipped to
   the documented bounds of the space, optional Gaussian sensor noise (from the episode's
   generator) and optional wave preview (incident elevation at points ahead of O along the
-  heading, from the wave field);
+  heading, or at any horizontal points of the body frame, from the wave field);
 * **rendering** — :meth:`ShipTask.snapshot` (profile/section elevations from the wave field and a
   ring buffer of roll, pitch, heave and heading).
 
@@ -347,9 +347,10 @@ class ShipTask(BatchedTask, abc.ABC):
         Roll angle above which the cost accrues [deg].
     sensor_noise : float
         Multiplier of :data:`SENSOR_NOISE_STD` [-] (0: exact observations).
-    wave_preview_m : sequence of float
-        Distances ahead of O along the heading where the incident elevation is observed [m]
-        (empty: no preview).
+    wave_preview_m : sequence of float, or of (x, y) pairs
+        Where the incident elevation is observed [m]: distances ahead of O along the heading,
+        or (x forward, y to starboard) points of the horizontal body frame, which can look
+        abeam and up-wave in beam seas (empty: no preview).
     history_length : int
         Samples of the rendering history (one per control step).
     extra_observations : sequence of (name, low, high)
@@ -377,7 +378,7 @@ class ShipTask(BatchedTask, abc.ABC):
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 30.0,
         sensor_noise: float = 0.0,
-        wave_preview_m: Sequence[float] = (),
+        wave_preview_m: Sequence[float] | Sequence[Sequence[float]] = (),
         history_length: int = 240,
         extra_observations: Sequence[tuple[str, float, float]] = (),
         capsize_penalty: float = 0.0,
@@ -453,14 +454,24 @@ class ShipTask(BatchedTask, abc.ABC):
         try:
             if isinstance(wave_preview_m, str | bytes):
                 raise TypeError
-            preview = np.asarray(wave_preview_m, dtype=float).reshape(-1)
+            preview = np.asarray(wave_preview_m, dtype=float)
+            if preview.ndim > 2 or (preview.ndim == 2 and preview.shape[1] != 2):
+                raise ValueError
         except (TypeError, ValueError):
             raise ValueError(
-                f"wave_preview_m must be a sequence of distances [m], got {wave_preview_m!r}"
+                "wave_preview_m must be a sequence of distances ahead [m] or of (x, y) "
+                f"body-frame points [m], got {wave_preview_m!r}"
             ) from None
         if not np.all(np.isfinite(preview)) or np.any(np.abs(preview) > 5000.0):
-            raise ValueError(f"wave_preview_m must be finite distances within ±5 km, got {preview}")
+            raise ValueError(
+                f"wave_preview_m must be finite distances within ±5 km, got {preview.tolist()}"
+            )
         self.wave_preview_m = preview
+        ahead = preview.ndim < 2
+        # (k, 2) body-frame points of the preview: (d, 0) for a distance d ahead
+        self._preview_xy = (
+            np.column_stack([preview.reshape(-1), np.zeros(preview.size)]) if ahead else preview
+        )
         if (
             isinstance(history_length, bool)
             or not isinstance(history_length, int | np.integer)
@@ -475,6 +486,14 @@ class ShipTask(BatchedTask, abc.ABC):
             float(self._propeller.shaft_speed_for(setup.speed)) if self._propeller else 0.0
         )
         self._rudder = self._actuator("rudder")
+        # every servo-driven surface (rudder, fins, T-foil): its travel over the control step
+        # as a fraction of the most its servo can travel in one (computed once per step)
+        self._servo_names = self.sim.actuator_names()
+        self._servos = tuple(self.sim.actuator_model(name) for name in self._servo_names)
+        self._servo_angles_before = np.zeros((n, len(self._servos)))
+        rates = [servo.servo.max_rate for servo in self._servos]
+        self._servo_max_travel = np.array(rates) * self.control_dt
+        self._servo_travel = np.zeros((n, len(self._servos)))
         self.commands: dict[str, NDArray] = {}
         if setup.propulsion:
             self.commands["shaft_speed"] = np.full(n, self._nominal_shaft_speed)
@@ -500,8 +519,12 @@ class ShipTask(BatchedTask, abc.ABC):
             names.append(name)
             low.append(float(lo))
             bounds.append(float(hi))
-        for d in preview:
-            names.append(f"wave elevation {d:g} m ahead [m]")
+        for x, y in self._preview_xy:
+            names.append(
+                f"wave elevation {x:g} m ahead [m]"
+                if ahead
+                else f"wave elevation at body point ({x:g}, {y:g}) m [m]"
+            )
             low.append(-30.0)
             bounds.append(30.0)
         self.observation_names = tuple(names)
@@ -509,7 +532,8 @@ class ShipTask(BatchedTask, abc.ABC):
         self._obs_high = np.asarray(bounds, dtype=np.float32)
         self.observation_space = spaces.Box(self._obs_low, self._obs_high, dtype=np.float32)
         noise = [SENSOR_NOISE_STD.get(name, 0.0) for name in names]
-        noise[len(names) - preview.size :] = [_PREVIEW_NOISE_STD] * preview.size
+        k = len(self._preview_xy)
+        noise[len(names) - k :] = [_PREVIEW_NOISE_STD] * k
         self._noise_std = self.sensor_noise * np.asarray(noise)
         # --- per-episode state
         self.heading_setpoint = np.zeros(n)  # ψ_ref [rad]
@@ -559,6 +583,20 @@ class ShipTask(BatchedTask, abc.ABC):
             return self.sim.actuator_model(name)
         except ValueError:
             return None
+
+    def servo_travel(self, name: str) -> NDArray:
+        """(N,) travel of the servo-driven force model ``name`` (``"rudder"``, ``"roll_fins"``,
+        ``"t_foil"``…) over the last control step, as a fraction of the most its servo can
+        travel in one, Δδ/(δ̇_max Δt) [-] in [−1, 1]; 0 after a reset. A read-only view."""
+        try:
+            j = self._servo_names.index(name)
+        except ValueError:
+            raise ValueError(
+                f"no servo-driven force model {name!r}; the setup's are {list(self._servo_names)}"
+            ) from None
+        view = self._servo_travel[:, j]
+        view.flags.writeable = False
+        return view
 
     def rudder_angle(self) -> NDArray:
         """(N,) servo rudder angle δ [rad] (zeros without a rudder)."""
@@ -682,6 +720,7 @@ class ShipTask(BatchedTask, abc.ABC):
         if "rudder_command" in self.commands:
             self.commands["rudder_command"][ids] = 0.0
         self.heading_setpoint[ids] = 0.0
+        self._servo_travel[ids] = 0.0
         self._task_options = opts
         for i, rng in zip(ids, rngs, strict=True):
             self._reset_infos[int(i)].update(self._reset_task(int(i), rng))
@@ -767,6 +806,9 @@ class ShipTask(BatchedTask, abc.ABC):
         n = self.num_envs
         a = np.asarray(actions, dtype=np.float64).reshape(n, -1)
         self._step_heading_error = None
+        before = self._servo_angles_before
+        for j, servo in enumerate(self._servos):
+            before[:, j] = servo.angle
         self._apply_actions(a)
         position_before = sim.eta[:, :2].copy()
         # the control step's physics substeps in one engine call (compiled when possible)
@@ -774,6 +816,8 @@ class ShipTask(BatchedTask, abc.ABC):
             numba.set_num_threads(min(self.num_threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]  # numba.config sets it through globals()
         red = sim.advance(self.substeps, self.commands, danger_roll=self.dangerous_roll)
         max_abs = red.max_abs_roll
+        for j, servo in enumerate(self._servos):
+            self._servo_travel[:, j] = (servo.angle - before[:, j]) / self._servo_max_travel[j]
         # capsize flags, roll statistics, wrap(ψ_ref − ψ) (once per step: the observation, the
         # reward terms and the info use it) and the returned copies, in one compiled pass
         empty, flag = np.empty, np.bool_
@@ -825,9 +869,10 @@ class ShipTask(BatchedTask, abc.ABC):
 
     def _preview(self) -> NDArray:
         eta = self.sim.eta
-        d = self.wave_preview_m[None, :]
-        x = eta[:, 0:1] + d * np.cos(eta[:, 5:6])
-        y = eta[:, 1:2] + d * np.sin(eta[:, 5:6])
+        px, py = self._preview_xy[None, :, 0], self._preview_xy[None, :, 1]
+        cos, sin = np.cos(eta[:, 5:6]), np.sin(eta[:, 5:6])
+        x = eta[:, 0:1] + (px * cos - py * sin)
+        y = eta[:, 1:2] + (px * sin + py * cos)
         return self.sim.elevation(x, y)
 
     def _clean_observations(self, heading_error: NDArray | None = None) -> NDArray:
@@ -847,7 +892,7 @@ class ShipTask(BatchedTask, abc.ABC):
             self._obs_extra[:] = self._extra_observations()
         elif self._n_extra:
             self._write_extra_observations(self._obs_extra)
-        if self.wave_preview_m.size:
+        if len(self._preview_xy):
             self._obs_preview[:] = self._preview()
         return out
 

@@ -16,6 +16,7 @@ SHIPPED = [
     "ppo_capsize_avoidance",
     "ppo_course_keeping",
     "ppo_lagrangian_capsize_avoidance",
+    "ppo_residual_course_keeping",
     "ppo_roll_one_dof",
     "ppo_roll_stabilization",
     "sac_ride_control",

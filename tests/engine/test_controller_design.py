@@ -1,6 +1,7 @@
 """The classical controllers designed from the ship's own linear model
-(ship_gym.engine.ship.fin_stabiliser, heading_autopilot): the same design the simulator builds
-for fins="controller" and rudder="autopilot", and the design's dependence on its choices."""
+(ship_gym.engine.ship.fin_stabiliser, heading_autopilot, ride_controller): the same design the
+simulator builds for fins="controller", rudder="autopilot" and t_foil="controller", and the
+design's dependence on its choices."""
 
 import dataclasses
 
@@ -8,8 +9,14 @@ import pytest
 
 from ship_gym.control.actuators import Actuated
 from ship_gym.control.autopilot import HeadingAutopilot
-from ship_gym.control.stabilisers import FinController
-from ship_gym.engine.ship import ShipSetup, build_simulator, fin_stabiliser, heading_autopilot
+from ship_gym.control.stabilisers import FinController, RideController
+from ship_gym.engine.ship import (
+    ShipSetup,
+    build_simulator,
+    fin_stabiliser,
+    heading_autopilot,
+    ride_controller,
+)
 
 SETUP = ShipSetup(speed=10.0, propulsion=True, manoeuvring=True)
 
@@ -58,3 +65,21 @@ def test_heading_autopilot_is_the_simulators_autopilot_and_follows_pole_placemen
         heading_autopilot(SETUP, natural_frequency=0.0)
     with pytest.raises(ValueError, match="damping"):
         heading_autopilot(SETUP, damping=-1.0)
+
+
+def test_ride_controller_is_the_simulators_and_linear_in_its_damping_fractions():
+    # t_foil="controller" builds RideController.tuned(Z_δ, M_δ, C33, m + A33, C55, I55 + A55)
+    # at ζ_3 = ζ_5 = 0.2: ride_controller rebuilds it from the setup alone, to rounding
+    built = _controller(dataclasses.replace(SETUP, t_foil="controller"), RideController)
+    design = ride_controller(SETUP)
+    assert design.k_heave == pytest.approx(built.k_heave, rel=1e-12)
+    assert design.k_pitch == pytest.approx(built.k_pitch, rel=1e-12)
+    # k_w = 2 ζ_3 √(C33 (m + A33)) / Z_δ, k_q = 2 ζ_5 √(C55 (I55 + A55)) / M_δ: each gain
+    # scales with its own fraction only
+    pitch_only = ride_controller(SETUP, heave_damping=0.0, pitch_damping=1.0)
+    assert pitch_only.k_heave == 0.0
+    assert pitch_only.k_pitch == pytest.approx(5.0 * design.k_pitch, rel=1e-12)
+    with pytest.raises(ValueError, match="heave_damping"):
+        ride_controller(SETUP, heave_damping=-0.1)
+    with pytest.raises(ValueError, match="pitch_damping"):
+        ride_controller(SETUP, pitch_damping=float("inf"))

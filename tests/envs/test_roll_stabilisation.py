@@ -79,3 +79,25 @@ def test_fin_travel_is_observed_and_costs_wear():
     assert obs[i_travel] == 0.0
     _, _, _, _, info = env.step(np.zeros(1, dtype=np.float32))
     assert info["reward_fin_rate"] == 0.0
+
+
+def test_every_servo_travel_is_kept_by_the_ship_task():
+    # ShipTask keeps Δδ/(δ̇_max Δt) of every servo-driven surface, once per step: with rudder
+    # roll stabilisation both the fins (15 °/s) and the rudder (2.32 °/s) are commanded
+    env = _env(rudder_roll_stabilization=True)
+    task = env.unwrapped.task
+    assert set(task._servo_names) == {"rudder", "roll_fins"}
+    env.reset(seed=0)
+    before = {name: task.sim.actuator_model(name).angle.copy() for name in task._servo_names}
+    env.step(np.array([0.3, -1.0], dtype=np.float32))
+    for name in task._servo_names:
+        servo = task.sim.actuator_model(name)
+        expected = (servo.angle - before[name]) / (servo.servo.max_rate * task.control_dt)
+        np.testing.assert_array_equal(task.servo_travel(name), expected)
+    # the rudder ran at its rate limit the whole step; the fins reached 0.3 · 25° = 7.5° = 1 step
+    assert task.servo_travel("rudder")[0] == pytest.approx(-1.0, abs=1e-9)
+    assert 0.9 < task.servo_travel("roll_fins")[0] <= 1.0
+    with pytest.raises(ValueError, match="read-only"):
+        task.servo_travel("rudder")[0] = 0.0
+    with pytest.raises(ValueError, match=r"no servo-driven force model 'fins'; the setup's are"):
+        task.servo_travel("fins")

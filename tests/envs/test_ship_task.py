@@ -109,6 +109,29 @@ def test_wave_preview_is_the_elevation_ahead_along_the_heading():
     assert np.ptp(obs[-2:]) > 0.0
 
 
+def test_wave_preview_at_body_points_rotates_with_the_heading():
+    # (x forward, y to starboard) body-frame points: earth position O + R(ψ) (x, y), NED
+    points = ((0.0, 0.0), (0.0, 40.0), (-30.0, -60.0))
+    env = CourseKeepingEnv(**COARSE, wave_preview_m=points)
+    env.reset(seed=2)
+    for _ in range(60):  # turn away from north (≈ 0.3 rad), so that the rotation matters
+        obs, *_ = env.step(np.array([1.0], dtype=np.float32))
+    sim = env.task.sim
+    x0, y0, psi = sim.eta[0, 0], sim.eta[0, 1], sim.eta[0, 5]
+    assert abs(psi) > 0.15
+    c, s = np.cos(psi), np.sin(psi)
+    xs = np.array([[x0 + px * c - py * s for px, py in points]])
+    ys = np.array([[y0 + px * s + py * c for px, py in points]])
+    assert env.observation_names[-3:] == (
+        "wave elevation at body point (0, 0) m [m]",
+        "wave elevation at body point (0, 40) m [m]",
+        "wave elevation at body point (-30, -60) m [m]",
+    )
+    np.testing.assert_allclose(obs[-3:], sim.elevation(xs, ys)[0], rtol=1e-6, atol=1e-6)
+    with pytest.raises(ValueError, match=r"wave_preview_m must be .* \(x, y\) body-frame points"):
+        CourseKeepingEnv(**COARSE, wave_preview_m=((0.0, 1.0, 2.0),))
+
+
 def test_gm_randomisation_sets_loading_and_capsize_angle():
     env = CourseKeepingEnv(**COARSE, gm_range_m=(0.6, 1.4))
     _, info = env.reset(seed=4)

@@ -132,14 +132,24 @@ class _ReferenceStep:
         self._hist[ids, 3, col] = eta[:, 5]
 
 
-class ReferenceCourseKeepingTask(_ReferenceStep, CourseKeepingTask):
+class _ReferenceTravel:
+    """The former per-task servo-travel bookkeeping: the angle before the step, zeroed at reset."""
+
+    def _reset_task(self, i, rng):
+        if not hasattr(self, "_ref_before"):
+            self._ref_before = np.zeros(self.num_envs)
+        self._ref_before[i] = 0.0
+        return super()._reset_task(i, rng)
+
+
+class ReferenceCourseKeepingTask(_ReferenceTravel, _ReferenceStep, CourseKeepingTask):
     def _travel(self):
-        return (self.rudder_angle() - self._rudder_before) / (
+        return (self.rudder_angle() - self._ref_before) / (
             self._rudder.servo.max_rate * self.control_dt
         )
 
     def _apply_actions(self, actions):
-        self._rudder_before[:] = self.rudder_angle()
+        self._ref_before[:] = self.rudder_angle()
         cmd = self.commands["rudder_command"]
         if self.rudder_mode == "absolute":
             cmd[:] = actions[:, 0] * self.rudder_limit
@@ -187,11 +197,15 @@ class _ReferenceComfort(_ReferenceStep):
         return self._comfort_reward_terms(stats, self.sample)
 
 
-class ReferenceRollStabilizationTask(_ReferenceComfort, RollStabilizationTask):
+class ReferenceRollStabilizationTask(_ReferenceTravel, _ReferenceComfort, RollStabilizationTask):
     def _travel(self):
-        return (self.actuator_angles()[:, 0] - self._angles_before[:, 0]) / (
+        return (self.actuator_angles()[:, 0] - self._ref_before) / (
             FIN_SERVO.max_rate * self.control_dt
         )
+
+    def _apply_actions(self, actions):
+        self._ref_before[:] = self.actuator_angles()[:, 0]
+        super()._apply_actions(actions)
 
     def _extra_observations(self):
         return np.column_stack(
