@@ -1,6 +1,7 @@
 #!/usr/bin/env python
 """Tune the classical baseline of a ship task on training seeds, then evaluate it on held-out
-seeds: the fin stabiliser of RollStabilization, the heading autopilot of CourseKeeping.
+seeds: the fin stabiliser of RollStabilization, the heading autopilot of CourseKeeping, the
+T-foil ride controller of RideControl.
 
 Both baselines are designed from the ship's own linear model and leave two design choices open,
 which a grid over them settles on the training seeds (default 0–23, one episode each with the
@@ -13,7 +14,12 @@ task error against actuator effort and travel:
   hydrostatic stiffness, k_φ = c_add C₄₄ / K_δ (grid: ζ_add × c_add);
 * **CourseKeeping-v2**, the PID autopilot of :func:`ship_gym.engine.ship.heading_autopilot`,
   placed on the Nomoto model (K, T) identified from the ship's manoeuvring, propulsion and rudder
-  models: K_p = T ω_n²/K, K_d = (2 ζ ω_n T − 1)/K, K_i = K_p ω_n/10 (grid: ω_n × ζ).
+  models: K_p = T ω_n²/K, K_d = (2 ζ ω_n T − 1)/K, K_i = K_p ω_n/10 (grid: ω_n × ζ);
+* **RideControl-v2**, the T-foil law δ = k_w w − k_q q of
+  :func:`ship_gym.engine.ship.ride_controller`: each gain adds a fraction of critical damping
+  to its mode as if the foil acted on it alone, k_w = 2 ζ_3 √(C₃₃ (m + A₃₃)) / Z_δ and
+  k_q = 2 ζ_5 √(C₅₅ (I₅₅ + A₅₅)) / M_δ (grid: ζ_3 × ζ_5; the S175's 12.8 m² foil is small
+  against its pitch inertia, so the fractions are small: ζ_5 = 0.023 is k_q = 40 action units).
 
 Gains are written in action units (per unit of the action, i.e. divided by the actuator limit),
 the form :mod:`ship_gym.agents.baselines` takes. The tuned baseline, the design's defaults and the
@@ -47,8 +53,9 @@ import gymnasium
 import ship_gym  # noqa: F401  (registers the ids)
 from ship_gym.agents.baselines import make_baseline
 from ship_gym.agents.evaluate import run_episodes, summarize
-from ship_gym.engine.ship import fin_stabiliser, heading_autopilot
+from ship_gym.engine.ship import fin_stabiliser, heading_autopilot, ride_controller
 from ship_gym.envs.env_task import RUDDER_LIMIT_DEG
+from ship_gym.envs.ride_control import FOIL_LIMIT_DEG
 from ship_gym.envs.roll_stabilisation import FIN_LIMIT_DEG
 from ship_gym.io_utils import atomic_write_text
 
@@ -65,6 +72,12 @@ def _autopilot_gains(setup: Any, natural_frequency: float, damping: float) -> di
     return {"k_p": design.kp / limit, "k_d": design.kd / limit, "k_i": design.ki / limit}
 
 
+def _ride_gains(setup: Any, heave_damping: float, pitch_damping: float) -> dict[str, float]:
+    design = ride_controller(setup, heave_damping=heave_damping, pitch_damping=pitch_damping)
+    limit = math.radians(FOIL_LIMIT_DEG)
+    return {"k_heave": float(design.k_heave) / limit, "k_pitch": float(design.k_pitch) / limit}
+
+
 @dataclass(frozen=True)
 class Design:
     """A baseline designed from the ship's model with two open choices."""
@@ -75,6 +88,8 @@ class Design:
     grid: dict[str, tuple[float, ...]]
     defaults: dict[str, float]
     gains: Callable[..., dict[str, float]]
+    reference: str = "design defaults"
+    """What ``defaults`` are, in the held-out report."""
 
 
 DESIGNS = {
@@ -93,6 +108,15 @@ DESIGNS = {
         {"natural_frequency": (0.04, 0.06, 0.08, 0.1, 0.12), "damping": (0.7, 0.9, 1.2)},
         {"natural_frequency": 0.06, "damping": 0.9},
         _autopilot_gains,
+    ),
+    "RideControl": Design(
+        "ship_gym/RideControl-v2",
+        "ride",
+        "rms_vertical_acceleration_mps2",
+        {"heave_damping": (0.0, 0.02, 0.05, 0.1), "pitch_damping": (0.01, 0.02, 0.03, 0.05, 0.08)},
+        {"heave_damping": 0.0, "pitch_damping": 0.023},
+        _ride_gains,
+        "former hand-tuned gains",
     ),
 }
 
@@ -155,7 +179,7 @@ def main() -> int:
     held_out = {
         "zero": _run(design, "zero", {}, test),
         f"{design.baseline} (tuned)": _run(design, design.baseline, chosen_gains, test),
-        f"{design.baseline} (design defaults)": _run(
+        f"{design.baseline} ({design.reference})": _run(
             design, design.baseline, design.gains(setup, **design.defaults), test
         ),
     }
@@ -165,7 +189,7 @@ def main() -> int:
         "train_seeds": [train[0], len(train)],
         "test_seeds": [test[0], len(test)],
         "grid": design.grid,
-        "design_defaults": design.defaults,
+        design.reference.replace(" ", "_"): design.defaults,
         "chosen": chosen,
         "chosen_gains": chosen_gains,
         "chosen_train_return": best["mean_return"],

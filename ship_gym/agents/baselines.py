@@ -394,7 +394,14 @@ class RideController(Baseline):
     (seeds 0–3) and 4.3 % (seeds 4–7) against zero action, and the return with it. Heave-velocity
     feedback did not help (k_heave = 4, k_pitch = 0: +5.5 %; the former defaults 1, 10: −1.3 %
     and +0.5 %), nor did feedback on the earth-vertical velocity w cos θ − u sin θ instead of
-    the body w (≈ ż + U θ at speed U): so k_heave = 0.
+    the body w (≈ ż + U θ at speed U): so k_heave = 0. :data:`DEFAULT_GAINS` holds
+    RideControl-v2's: the design of :func:`ship_gym.engine.ship.ride_controller` (each gain adds
+    a fraction of critical damping to its mode: 77.7 action units/(m/s) per unit ζ_3 and 1 735
+    action units/(rad/s) per unit ζ_5 on the S175's ±15° foil) at ζ_3 0, ζ_5 0.02, chosen by
+    ``scripts/tune_baseline.py RideControl`` (the best v2 return on training seeds 0–23 of a
+    4 × 5 grid, docs/benchmarks/RideControl_baseline.json; heave damping made every point worse).
+    On held-out seeds 10 000–10 039 it gives 0.387 m/s² at effort 0.19 (zero foil 0.412), the
+    same return as the hand-tuned k_pitch 40 (−197.0 vs −196.8): the optimum is flat.
 
     Attributes
     ----------
@@ -661,6 +668,9 @@ DEFAULT_GAINS: Mapping[tuple[str, str], Mapping[str, float]] = {
     # scripts/tune_baseline.py CourseKeeping (docs/benchmarks/CourseKeeping_baseline.json):
     # heading_autopilot at ω_n 0.06 rad/s, ζ 0.7
     ("pid", "CourseKeeping"): {"k_p": 1.479, "k_d": 25.98, "k_i": 0.00887},
+    # scripts/tune_baseline.py RideControl (docs/benchmarks/RideControl_baseline.json):
+    # ride_controller at ζ_3 0, ζ_5 0.02
+    ("ride", "RideControl"): {"k_heave": 0.0, "k_pitch": 34.69},
 }
 """Per-env default gains: (baseline name, env name without namespace/version) → gains."""
 

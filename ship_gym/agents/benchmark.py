@@ -93,7 +93,7 @@ TASKS: dict[str, BenchmarkTask] = {
         500_000,
     ),
     "RideControl": BenchmarkTask(
-        "ship_gym/RideControl-v1",
+        "ship_gym/RideControl-v2",
         "rms_vertical_acceleration_mps2",
         "RMS vertical acceleration [m/s²]",
         ("zero", "ride"),
@@ -358,11 +358,13 @@ def results_markdown(results: dict[str, Any]) -> str:
         "model:docs/benchmarks/policies/<task>/<config>` evaluates a shipped policy).",
         "",
         "The classical baselines are designed from the ship's own linear model and tuned on "
-        "training seeds by a script: the fin stabiliser and the heading autopilot by "
-        "`scripts/tune_baseline.py RollStabilization|CourseKeeping` (grids in "
-        "`<task>_baseline_tuning.csv`, choice and held-out check in `<task>_baseline.json`), "
-        "the CapsizeAvoidance master by `scripts/tune_capsize_master.py` "
-        "(`capsize_master.json`).",
+        "training seeds by a script: the fin stabiliser, the heading autopilot and the ride "
+        "controller by `scripts/tune_baseline.py RollStabilization|CourseKeeping|RideControl` "
+        "(grids in `<task>_baseline_tuning.csv`, choice and held-out check in "
+        "`<task>_baseline.json`), the CapsizeAvoidance master by "
+        "`scripts/tune_capsize_master.py` (`capsize_master.json`). A `ppo_residual_*` config "
+        "learns a correction of its task's tuned baseline, a = clip(a_baseline + scale · "
+        "a_learned) (`ship_gym.agents.residual`).",
         "",
     ]
     for name, task in results["tasks"].items():

@@ -42,7 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.agents.baselines import BASELINES, Baseline, EnvLayout, make_baseline
-from ship_gym.envs.saved_policies import ModelPolicy, load_policy
+from ship_gym.envs.saved_policies import RESIDUAL_FILE, ModelPolicy, load_policy
 
 __all__ = [
     "RESIDUAL_FILE",
@@ -54,9 +54,6 @@ __all__ = [
     "residual_vec_env",
     "save_residual",
 ]
-
-RESIDUAL_FILE = "residual.json"
-"""Name of the residual description in a run folder."""
 
 _MAX_SCALE = 2.0  # a learned part that can flip a saturated baseline command end to end
 
@@ -207,7 +204,7 @@ class ResidualPolicy:
 def load_agent_policy(path: str | Path, device: str = "cpu") -> ModelPolicy | ResidualPolicy:
     """A trained run as a policy: :func:`~ship_gym.envs.saved_policies.load_policy`, composed
     with its baseline when the run folder holds ``residual.json``."""
-    policy = load_policy(path, device=device)
+    policy = load_policy(path, device=device, residual=True)
     p = Path(path)
     residual = (p if p.is_dir() else p.parent) / RESIDUAL_FILE
     if not residual.exists():

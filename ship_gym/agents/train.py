@@ -338,6 +338,9 @@ def train(config: TrainConfig) -> Path:
         torch.set_num_threads(config.torch_threads)
     out = Path(config.output_dir)
     out.mkdir(parents=True, exist_ok=True)
+    # a summary marks a finished run (the benchmark reuses such runs): an earlier run's must not
+    # stand beside this run's config while this one trains
+    (out / "summary.json").unlink(missing_ok=True)
     atomic_write_text(out / "config.toml", dump_toml(config.raw))
     venv = make_training_env(config)
     if config.residual is not None:

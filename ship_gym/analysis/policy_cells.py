@@ -87,12 +87,18 @@ def read_policy_controller(path: str | os.PathLike[str], *, field: str) -> Polic
         take a campaign cell (not a ship task).
     """
     from ship_gym.envs.registration import env_class_of
-    from ship_gym.envs.saved_policies import read_run_config
+    from ship_gym.envs.saved_policies import RESIDUAL_FILE, read_run_config
 
     p = Path(path)
     zip_path = p / "model.zip" if p.is_dir() else p
     if not zip_path.is_file():
         raise ValueError(f"{field}: no saved model at {zip_path}; expected a `ship-gym train` run")
+    if (zip_path.parent / RESIDUAL_FILE).is_file():
+        raise ValueError(
+            f"{field}: {zip_path.parent} is a residual policy (a correction of the classical "
+            f"controller in {RESIDUAL_FILE}), which campaign cells cannot run yet; expected a "
+            "policy trained without a [residual] table"
+        )
     config_path = zip_path.parent / "config.toml"
     if not config_path.is_file():
         raise ValueError(

@@ -61,7 +61,7 @@ class EnvEntry:
 ENTRIES: tuple[EnvEntry, ...] = (
     EnvEntry("CourseKeeping", "course_keeping", 1000, 2),
     EnvEntry("RollStabilization", "roll_stabilisation", 1000, 2),
-    EnvEntry("RideControl", "ride_control", 1000, 1),
+    EnvEntry("RideControl", "ride_control", 1000, 2),
     EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500, 2),
     EnvEntry("RollOneDOF", "roll_one_dof", 1000, 0),
 )

@@ -1,4 +1,4 @@
-"""``ship_gym/RideControl-v1``: reduce the vertical accelerations of the S175 in head seas.
+"""``ship_gym/RideControl-v2``: reduce the vertical accelerations of the S175 in head seas.
 
 The task (:class:`RideControlTask`) runs on :class:`ship_gym.envs.env_task.ShipEnvTask` with the
 comfort bookkeeping of :class:`ship_gym.envs.roll_stabilisation.ComfortShipTask`; the Gymnasium
@@ -15,7 +15,7 @@ from numpy.typing import NDArray
 
 from ship_gym.comfort.metrics import ComfortSample
 from ship_gym.envs.base import TaskEnv, TaskStep, TaskVectorEnv
-from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
+from ship_gym.envs.docstrings import VERSION_HISTORY, env_docstring, vector_env_docstring
 from ship_gym.envs.env_task import S175_MESH, irregular_sea, point_scaled_from_s175, ship_kwargs
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.roll_stabilisation import ComfortShipTask
@@ -64,6 +64,7 @@ class RideControlTask(ComfortShipTask):
         vertical_weight: float = 1.0,
         vertical_scale_mps2: float = 1.0,
         effort_weight: float = 0.05,
+        foil_rate_weight: float = 0.05,
         capsize_penalty: float = 100.0,
         vertical_rms_limit_g: float = 0.05,
         comfort_time_constant_s: float = 30.0,
@@ -76,6 +77,7 @@ class RideControlTask(ComfortShipTask):
             "vertical_scale_mps2", vertical_scale_mps2, "m/s²", 50.0
         )
         self.effort_weight = check_weight("effort_weight", effort_weight)
+        self.foil_rate_weight = check_weight("foil_rate_weight", foil_rate_weight)
         limit_g = check_positive("vertical_rms_limit_g", vertical_rms_limit_g, "g", 2.0)
         self.foil_limit = math.radians(FOIL_LIMIT_DEG)
         self.action_names = (f"T-foil command (-1..1 = ±{FOIL_LIMIT_DEG:g} deg, + = nose up)",)
@@ -94,6 +96,8 @@ class RideControlTask(ComfortShipTask):
             extra_observations=(
                 ("T-foil angle [rad]", -math.pi / 2, math.pi / 2),
                 ("vertical acceleration at the passenger [m/s^2]", -30.0, 30.0),
+                ("T-foil command [rad]", -self.foil_limit, self.foil_limit),
+                ("T-foil travel over the last step [rate limit x step]", -1.0, 1.0),
             ),
             **ship_kwargs(args),
         )
@@ -106,6 +110,8 @@ class RideControlTask(ComfortShipTask):
     def _write_extra_observations(self, out: NDArray) -> None:
         out[:, 0] = self._actuator_models[0].angle
         out[:, 1] = self.sample.vertical
+        out[:, 2] = self.commands["t_foil_command"]
+        out[:, 3] = self.servo_travel("t_foil")
 
     def _comfort_reward_terms(
         self, stats: StepStatistics, sample: ComfortSample
@@ -115,6 +121,7 @@ class RideControlTask(ComfortShipTask):
             "vertical": -self.vertical_weight
             * (sample.weighted_vertical / self.vertical_scale) ** 2,
             "effort": -self.effort_weight * effort,
+            "foil_rate": -self.foil_rate_weight * self.servo_travel("t_foil") ** 2,
         }
 
     def _task_info(self, stats: StepStatistics) -> dict[str, NDArray]:
@@ -142,11 +149,21 @@ _ARGUMENTS: dict[str, tuple[str, str]] = {
     "vertical_weight": ("-", "weight of the weighted vertical acceleration"),
     "vertical_scale_mps2": ("m/s²", "its scale"),
     "effort_weight": ("-", "weight of the foil effort"),
+    "foil_rate_weight": ("-", "weight of the foil-travel (wear) term"),
     "vertical_rms_limit_g": ("g", "RMS vertical acceleration limit of the cost"),
 }
 
 
-@env_docstring(_ARGUMENTS)
+@env_docstring(
+    _ARGUMENTS,
+    (
+        *VERSION_HISTORY,
+        "v2: the T-foil's travel costs (wear: −foil_rate_weight · (Δδ/(δ̇_max Δt))², 0.05 by "
+        "default, equal to effort_weight); the foil command and its travel over the last step "
+        "are observed (the servo lags the command: with the angle alone the task was not Markov "
+        "in the actuator).",
+    ),
+)
 class RideControlEnv(TaskEnv):
     """Reduce the vertical accelerations of the S175 in head and bow seas with a bow T-foil.
 
@@ -165,7 +182,7 @@ class RideControlEnv(TaskEnv):
     The agent commands the T-foil. No stern flaps: the S175's cruiser stern has no immersed
     transom to carry them. The reward penalises the ISO 2631-1 W_f-weighted vertical
     acceleration at a passenger point (whose squared sum over an episode is the motion sickness
-    dose, :mod:`ship_gym.comfort.metrics`) and actuator effort.
+    dose, :mod:`ship_gym.comfort.metrics`), actuator effort and foil travel (wear).
 
     ## Action Space
 
@@ -180,7 +197,9 @@ class RideControlEnv(TaskEnv):
     {ship_observations}
     | 14 | T-foil angle (servo) | rad | ±π/2 |
     | 15 | earth-vertical acceleration at the passenger point (down positive) | m/s² | ±30 |
-    | 16… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
+    | 16 | T-foil command δ_c (the servo follows it at ≤ 20 °/s) | rad | ±0.262 |
+    | 17 | T-foil travel over the last control step Δδ/(δ̇_max Δt) | - | ±1 |
+    | 18… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     The accelerations at the passenger point use ν̇ from the backward difference of ν over the
     control step (:class:`ship_gym.comfort.metrics.PassengerComfort`).
@@ -192,6 +211,9 @@ class RideControlEnv(TaskEnv):
     * ``vertical`` = −vertical_weight · (a_w/vertical_scale)², a_w the W_f-weighted (ISO
       2631-1:1997, Annex A) earth-vertical acceleration at the passenger point;
     * ``effort`` = −effort_weight · (δ_foil/15°)²;
+    * ``foil_rate`` = −foil_rate_weight · (Δδ_foil/(δ̇_max Δt))², Δδ_foil the servo travel over
+      the control step Δt and δ̇_max = 20 °/s its rate limit (1 = travelling at the limit the
+      whole step: foil wear);
     * ``capsize`` = −capsize_penalty in the step the ship capsizes.
 
     ``info["cost"]`` (Safe RL, the fraction of the step in violation of the task's constraints,

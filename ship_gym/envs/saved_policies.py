@@ -20,10 +20,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["ALGORITHMS", "ModelPolicy", "load_policy", "read_run_config"]
+__all__ = ["ALGORITHMS", "RESIDUAL_FILE", "ModelPolicy", "load_policy", "read_run_config"]
 
 ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
 """The stable-baselines3 algorithms a run may name (``[algorithm] name``)."""
+
+RESIDUAL_FILE = "residual.json"
+"""In a run folder: the model is a correction of a classical controller
+(:mod:`ship_gym.agents.residual`), not a policy by itself."""
 
 
 @dataclass
@@ -74,11 +78,16 @@ def read_run_config(config_path: Path) -> dict[str, Any]:
         raise ValueError(f"{config_path}: invalid TOML: {exc}") from None
 
 
-def load_policy(path: str | Path, device: str = "cpu") -> ModelPolicy:
+def load_policy(path: str | Path, device: str = "cpu", *, residual: bool = False) -> ModelPolicy:
     """Load a model saved by :mod:`ship_gym.agents.train` (a run directory or a ``.zip``).
 
     The algorithm is read from the run's ``config.toml`` when present, else every SB3 algorithm
     is tried. A ``vecnormalize.pkl`` beside the model is applied to the observations.
+
+    A residual run (``residual.json`` beside the model) holds only the correction of a classical
+    controller: it is refused unless ``residual`` is True (what
+    :func:`ship_gym.agents.residual.load_agent_policy`, which adds the controller, passes), so
+    that the correction is never run as if it were the policy.
     """
     import stable_baselines3
 
@@ -87,6 +96,12 @@ def load_policy(path: str | Path, device: str = "cpu") -> ModelPolicy:
     zip_path = p / "model.zip" if p.is_dir() else p
     if not zip_path.exists():
         raise FileNotFoundError(f"no saved model at {zip_path}")
+    if not residual and (run_dir / RESIDUAL_FILE).exists():
+        raise ValueError(
+            f"{run_dir} is a residual policy (a correction of the classical controller in "
+            f"{RESIDUAL_FILE}); load it with ship_gym.agents.residual.load_agent_policy "
+            "(ship-gym evaluate does)"
+        )
     names: list[str] = list(ALGORITHMS)
     config_path = run_dir / "config.toml"
     training_env: dict = {}

@@ -164,7 +164,7 @@ def test_baseline_works_with_sb3_evaluate_policy():
 
 
 def test_ride_baseline_lowers_passenger_vertical_acceleration_on_ride_control():
-    """The tuned T-foil baseline beats zero action on RideControl-v1: seeds 0–3, 40 s each.
+    """The tuned T-foil baseline beats zero action on RideControl-v2: seeds 0–3, 40 s each.
 
     Same seas for both policies (per-episode seeds), so the comparison is deterministic. Measured
     (tuning run): RMS vertical acceleration at the passenger 0.302 vs 0.323 m/s² (−6.4 %), every
@@ -176,7 +176,7 @@ def test_ride_baseline_lowers_passenger_vertical_acceleration_on_ride_control():
     seeds, steps = [0, 1, 2, 3], 160
     runs = {
         name: run_episodes(
-            "ship_gym/RideControl-v1",
+            "ship_gym/RideControl-v2",
             lambda env, name=name: make_baseline(name, env),
             seeds,
             max_steps=steps,
@@ -299,6 +299,20 @@ def test_roll_stabilization_fins_are_the_tuned_design_of_the_ships_own_model():
     limit = math.radians(FIN_LIMIT_DEG)
     assert fins.k_rate == pytest.approx(design.k_rate / limit, rel=0.01)
     assert fins.k_roll == pytest.approx(design.k_roll / limit, rel=0.01)
+
+
+def test_ride_control_foil_gains_are_the_tuned_design_of_the_ships_own_model():
+    # DEFAULT_GAINS for RideControl: ride_controller at ζ_3 0, ζ_5 0.02 (the tuning script's
+    # choice) in action units (δ/15°), rounded to 4 digits: 0.1 %
+    from ship_gym.engine.ship import ride_controller
+    from ship_gym.envs.ride_control import FOIL_LIMIT_DEG
+
+    env = gymnasium.make("ship_gym/RideControl-v2")
+    design = ride_controller(env.unwrapped.task.setup, heave_damping=0.0, pitch_damping=0.02)
+    ride = make_baseline("ride", env)
+    limit = math.radians(FOIL_LIMIT_DEG)
+    assert ride.k_heave == 0.0
+    assert ride.k_pitch == pytest.approx(design.k_pitch / limit, rel=1e-3)
 
 
 def test_course_keeping_pid_is_the_tuned_autopilot_of_the_ships_own_nomoto_model():

@@ -79,14 +79,14 @@ def test_bad_policy_and_episode_count():
 
 
 def test_vertical_acceleration_metric_is_the_rms_of_the_env_info():
-    """RideControl-v1 gives ``info["vertical_acceleration_mps2"]``: the metric is its RMS over
+    """RideControl-v2 gives ``info["vertical_acceleration_mps2"]``: the metric is its RMS over
     the episode's steps, as a single env stepped by hand gives it (same seed and arithmetic:
     equal to rounding, rel 1e-12)."""
     steps = 24
     stats = run_episodes(
-        "ship_gym/RideControl-v1", lambda env: make_baseline("zero", env), [5], max_steps=steps
+        "ship_gym/RideControl-v2", lambda env: make_baseline("zero", env), [5], max_steps=steps
     )
-    env = gymnasium.make("ship_gym/RideControl-v1", max_episode_steps=steps)
+    env = gymnasium.make("ship_gym/RideControl-v2", max_episode_steps=steps)
     env.reset(seed=5)
     squares = []
     for _ in range(steps):

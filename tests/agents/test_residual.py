@@ -108,6 +108,11 @@ def test_a_trained_residual_run_loads_as_baseline_plus_scaled_model(tmp_path):
     base, _ = policy.baseline.predict(obs)
     learned, _ = policy.learned.predict(obs)
     np.testing.assert_array_equal(action, np.clip(base + 0.3 * learned, -1, 1).astype(np.float32))
+    # the bare correction is never taken for the policy (campaign cells load with load_policy)
+    from ship_gym.envs.saved_policies import load_policy
+
+    with pytest.raises(ValueError, match=r"is a residual policy .*load_agent_policy"):
+        load_policy(out)
     # the saved gains, not the current defaults, define the policy
     saved["parameters"]["k_rate"] = 40.0
     (out / RESIDUAL_FILE).write_text(json.dumps(saved))

@@ -73,6 +73,33 @@ def test_smoke_train_tiny_ppo_saves_model_config_normalizer(tmp_path):
     assert action.shape == (3, 1)
 
 
+def test_a_retrain_removes_the_earlier_summary_before_it_starts(tmp_path, monkeypatch):
+    # summary.json marks a finished run (the benchmark reuses it): while a new run trains in the
+    # same folder, the earlier run's summary must be gone, else its model would pass as this one
+    import ship_gym.agents.train as train_module
+
+    config = config_from_mapping(_tiny_config(tmp_path, tensorboard=False))
+    out = train(config)
+    seen = []
+    make_curve = train_module.learning_curve_callback
+
+    def spying_curve():
+        curve = make_curve()
+        start = curve._on_training_start
+
+        def on_start():
+            seen.append((out / "summary.json").exists())
+            start()
+
+        curve._on_training_start = on_start
+        return curve
+
+    monkeypatch.setattr(train_module, "learning_curve_callback", spying_curve)
+    train(config)
+    assert seen == [False]
+    assert (out / "summary.json").exists()
+
+
 def _parser():
     parser = argparse.ArgumentParser()
     sub = parser.add_subparsers(dest="command", required=True)

@@ -137,3 +137,13 @@ def test_a_model_without_its_config_is_refused(run_dir, tmp_path):
     shutil.copy(run_dir / "model.zip", lone / "model.zip")
     with pytest.raises(cp.CampaignError, match=r"config\.toml is missing"):
         cp.read_campaign(_campaign(tmp_path, lone / "model.zip"))
+
+
+def test_a_residual_policy_is_refused_at_read_time(run_dir, tmp_path):
+    # a residual run's model is only the correction of a classical controller: a campaign cell
+    # cannot add the controller (analysis may not import agents), so it must not run it bare
+    residual = tmp_path / "residual"
+    shutil.copytree(run_dir, residual)
+    (residual / "residual.json").write_text("{}")
+    with pytest.raises(cp.CampaignError, match=r"is a residual policy .* campaign cells cannot"):
+        cp.read_campaign(_campaign(tmp_path, residual))

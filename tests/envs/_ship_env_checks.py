@@ -84,7 +84,7 @@ SHIP_ENVS: dict[str, ShipEnvCase] = {
         {**COARSE, "rudder_roll_stabilization": True},
     ),
     "RideControl": ShipEnvCase(
-        RideControlEnv, RideControlVectorEnv, ("vertical", "effort", "capsize")
+        RideControlEnv, RideControlVectorEnv, ("vertical", "effort", "foil_rate", "capsize")
     ),
 }
 
@@ -154,3 +154,28 @@ def assert_bad_actions_raise(env: TaskEnv) -> None:
     for bad in (good + np.nan, good + np.inf, np.zeros(good.size + 1, dtype=np.float32)):
         with pytest.raises(ValueError, match="action"):
             env.step(bad)
+
+
+def full_scale_travel(env: TaskEnv, surface: str, term: str, weight: float) -> list[float]:
+    """Step a single-surface env with a = +1 for 6 steps from rest and check the servo-travel
+    bookkeeping of ``surface`` (``"fin"``, ``"T-foil"``): the command is observed at full scale,
+    the travel entry is Δδ/(δ̇_max Δt) and the ``term`` reward is −weight · travel²; a reset puts
+    the surface back at rest and charges no travel for the jump. Returns the travels."""
+    names = env.observation_names
+    i_cmd = names.index(f"{surface} command [rad]")
+    i_travel = names.index(f"{surface} travel over the last step [rate limit x step]")
+    limit = env.unwrapped.task.actuators[0][2]  # the command at a = 1 [rad]
+    env.reset(seed=0)
+    travel, terms = [], []
+    for _ in range(6):
+        obs, _, _, _, info = env.step(np.ones(1, dtype=np.float32))
+        travel.append(float(obs[i_travel]))
+        terms.append(float(info[f"reward_{term}"]))
+        assert obs[i_cmd] == pytest.approx(limit, rel=1e-6)
+    np.testing.assert_allclose(terms, -weight * np.square(travel), rtol=1e-5, atol=1e-7)
+    assert abs(travel[-1]) < 1e-3  # the servo has arrived
+    obs, _ = env.reset(seed=1)
+    assert obs[i_travel] == 0.0
+    _, _, _, _, info = env.step(np.zeros(1, dtype=np.float32))
+    assert info[f"reward_{term}"] == 0.0
+    return travel

@@ -1,4 +1,4 @@
-"""ship_gym/RideControl-v1: the comfort cost, the motion sickness dose, the T-foil's effect.
+"""ship_gym/RideControl-v2: the comfort cost, the motion sickness dose, the T-foil's effect.
 
 The checks every ship environment passes (checkers, seeding, reward = Σ terms, vector env,
 actions, time limit) are parametrised in test_ship_task.py; the coarse mesh is described in
@@ -10,7 +10,7 @@ import pytest
 
 from ship_gym.envs.ride_control import RideControlEnv
 
-from ._ship_env_checks import COARSE, rollout, uniform_actions
+from ._ship_env_checks import COARSE, full_scale_travel, rollout, uniform_actions
 
 HEAD_SEA = {
     "wave_heading_range_deg": (180.0, 180.0),
@@ -65,3 +65,13 @@ def test_bad_arguments_raise():
         _env(froude_number=0.9)
     with pytest.raises(ValueError, match="passenger_point_m"):
         _env(passenger_point_m=(0.0, 0.0, np.nan))
+
+
+def test_foil_travel_is_observed_and_costs_wear():
+    # v2: the foil command and the servo travel over the step (as a fraction of the 20 °/s ×
+    # 0.25 s = 5° the servo can travel in one step) are observed; foil_rate = −w · travel². A
+    # full-scale command (0 → 15°) keeps the servo at its rate limit for 15/5 = 3 steps (minus
+    # its 0.1 s lag): travel ≈ 1, 1, 1, then the tail of the lag; 15/5 = 3 in all.
+    travel = full_scale_travel(_env(foil_rate_weight=0.5), "T-foil", "foil_rate", 0.5)
+    np.testing.assert_allclose(travel[:2], 1.0, atol=1e-6)
+    assert sum(travel) == pytest.approx(3.0, abs=1e-4)

@@ -10,7 +10,7 @@ import pytest
 
 from ship_gym.envs.roll_stabilisation import RollStabilizationEnv
 
-from ._ship_env_checks import COARSE, rollout
+from ._ship_env_checks import COARSE, full_scale_travel, rollout
 
 BEAM_SEA = {
     "wave_heading_range_deg": (90.0, 90.0),
@@ -58,27 +58,10 @@ def test_fin_travel_is_observed_and_costs_wear():
     # = 7.5° the servo can travel in one step) are observed; the fin_rate term is
     # −fin_rate_weight · travel². A full-scale step command (0 → 25°) keeps the servo at its rate
     # limit for 25/7.5 = 3.3 steps: travel 1, 1, 1, then ≈ 1/3 and the tail of its 0.1 s lag.
-    env = _env(fin_rate_weight=0.5)
-    names = env.observation_names
-    i_cmd = names.index("fin command [rad]")
-    i_travel = names.index("fin travel over the last step [rate limit x step]")
-    env.reset(seed=0)
-    travel, terms = [], []
-    for _ in range(6):
-        obs, _, _, _, info = env.step(np.ones(1, dtype=np.float32))
-        travel.append(float(obs[i_travel]))
-        terms.append(float(info["reward_fin_rate"]))
-        assert obs[i_cmd] == pytest.approx(np.radians(25.0), rel=1e-6)
+    travel = full_scale_travel(_env(fin_rate_weight=0.5), "fin", "fin_rate", 0.5)
     np.testing.assert_allclose(travel[:3], 1.0, atol=1e-6)
     assert travel[3] == pytest.approx(1.0 / 3.0, abs=0.01)
     assert sum(travel) == pytest.approx(25.0 / 7.5, abs=1e-4)
-    assert abs(travel[-1]) < 1e-3
-    np.testing.assert_allclose(terms, -0.5 * np.square(travel), rtol=1e-5, atol=1e-7)
-    # reset puts the fins amidships: no travel is charged for the jump back
-    obs, _ = env.reset(seed=1)
-    assert obs[i_travel] == 0.0
-    _, _, _, _, info = env.step(np.zeros(1, dtype=np.float32))
-    assert info["reward_fin_rate"] == 0.0
 
 
 def test_every_servo_travel_is_kept_by_the_ship_task():

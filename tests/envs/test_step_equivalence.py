@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from ship_gym.comfort.metrics import PassengerComfort
-from ship_gym.control.actuators import FIN_SERVO
+from ship_gym.control.actuators import FIN_SERVO, FOIL_SERVO
 from ship_gym.envs.base import TaskEnv, TaskStep, TaskVectorEnv, validate_actions
 from ship_gym.envs.capsize_avoidance import CapsizeAvoidanceTask
 from ship_gym.envs.course_keeping import CourseKeepingTask
@@ -241,9 +241,25 @@ class ReferenceRollStabilizationTask(_ReferenceTravel, _ReferenceComfort, RollSt
         }
 
 
-class ReferenceRideControlTask(_ReferenceComfort, RideControlTask):
+class ReferenceRideControlTask(_ReferenceTravel, _ReferenceComfort, RideControlTask):
+    def _travel(self):
+        return (self.actuator_angles()[:, 0] - self._ref_before) / (
+            FOIL_SERVO.max_rate * self.control_dt
+        )
+
+    def _apply_actions(self, actions):
+        self._ref_before[:] = self.actuator_angles()[:, 0]
+        super()._apply_actions(actions)
+
     def _extra_observations(self):
-        return np.column_stack([self.actuator_angles()[:, 0], self.sample.vertical])
+        return np.column_stack(
+            [
+                self.actuator_angles()[:, 0],
+                self.sample.vertical,
+                self.commands["t_foil_command"],
+                self._travel(),
+            ]
+        )
 
     def _comfort_reward_terms(self, stats, sample):
         effort = (self.actuator_angles()[:, 0] / self.foil_limit) ** 2
@@ -251,6 +267,7 @@ class ReferenceRideControlTask(_ReferenceComfort, RideControlTask):
             "vertical": -self.vertical_weight
             * (sample.weighted_vertical / self.vertical_scale) ** 2,
             "effort": -self.effort_weight * effort,
+            "foil_rate": -self.foil_rate_weight * self._travel() ** 2,
         }
 
     def _task_info(self, stats):

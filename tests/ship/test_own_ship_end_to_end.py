@@ -21,7 +21,7 @@ from ship_gym.ship.database_cache import cache_path, cached_database
 SHIP_ENV_IDS = (
     "ship_gym/CourseKeeping-v2",
     "ship_gym/RollStabilization-v2",
-    "ship_gym/RideControl-v1",
+    "ship_gym/RideControl-v2",
     "ship_gym/CapsizeAvoidance-v2",
 )
 """Every registered id built on the 6-DOF ship model (RollOneDOF is the 1-DOF Edith Terkol
