@@ -82,7 +82,7 @@ TASKS: dict[str, BenchmarkTask] = {
         "RMS heading error [deg]",
         ("zero", "pid"),
         ("ppo_course_keeping", "ppo_residual_course_keeping"),
-        500_000,
+        None,  # each config's own budget: 500 k from scratch, 1 M for the residual
     ),
     "RollStabilization": BenchmarkTask(
         "ship_gym/RollStabilization-v2",
@@ -379,13 +379,14 @@ def results_markdown(results: dict[str, Any]) -> str:
             f"{task['strongest_baseline']}.",
             "",
             f"| policy | {task['metric_label']} | effort | capsize [95 % CI] | return | cost | "
-            "training wall [s] | steps/s | vs strongest | target |",
-            "|---|---|---|---|---|---|---|---|---|---|",
+            "training steps | training wall [s] | steps/s | vs strongest | target |",
+            "|---|---|---|---|---|---|---|---|---|---|---|",
         ]
         for r in task["rows"]:
             low, high = r["capsize_ci95"]
             wall = f"{r['wall_s']:.0f}" if "wall_s" in r else "–"
             rate = f"{r['steps_per_s']:.0f}" if r.get("steps_per_s") else "–"
+            steps = f"{r['timesteps'] / 1000:.0f} k" if r.get("timesteps") else "–"
             if r.get("gain_vs_strongest") is not None:
                 gain = f"{100 * r['gain_vs_strongest']:+.0f} %"
             else:
@@ -394,7 +395,8 @@ def results_markdown(results: dict[str, Any]) -> str:
             lines.append(
                 f"| {r['policy']} | {r['metric']:.4g} | {r['effort']:.3f} | "
                 f"{r['capsized']}/{r['episodes']} [{low:.2f}, {high:.2f}] | "
-                f"{r['mean_return']:.0f} | {r['mean_cost']:.2f} | {wall} | {rate} | {gain} | "
+                f"{r['mean_return']:.0f} | {r['mean_cost']:.2f} | {steps} | {wall} | {rate} | "
+                f"{gain} | "
                 f"{target} |"
             )
         lines += ["", f"![learning curves](curves_{name}.png)", ""]

@@ -24,6 +24,8 @@ from ship_gym.agents.residual import (
 from ship_gym.agents.train import config_from_mapping, load_config, train
 from ship_gym.envs.sb3 import make_sb3_vec_env
 
+from .test_train import _tiny_config
+
 ENV = "ship_gym/RollOneDOF-v0"
 
 
@@ -75,23 +77,8 @@ def _residual_training_config(tmp_path, gains=None):
     residual = {"baseline": "fins", "scale": 0.3}
     if gains:
         residual["gains"] = gains
-    return config_from_mapping(
-        {
-            "env": {"id": ENV, "n_envs": 2, "normalize": True},
-            "residual": residual,
-            "algorithm": {
-                "name": "PPO",
-                "hyperparameters": {"n_steps": 32, "batch_size": 64, "n_epochs": 1},
-                "policy_kwargs": {"net_arch": [16]},
-            },
-            "training": {
-                "total_timesteps": 64,
-                "output_dir": str(tmp_path / "run"),
-                "progress_bar": False,
-                "tensorboard": False,
-            },
-        }
-    )
+    data = _tiny_config(tmp_path, total_timesteps=64, tensorboard=False)  # RollOneDOF-v0, PPO
+    return config_from_mapping({**data, "residual": residual})
 
 
 def test_a_trained_residual_run_loads_as_baseline_plus_scaled_model(tmp_path):
