@@ -50,6 +50,7 @@ __all__ = [
     "ResidualPolicy",
     "find_residual",
     "load_agent_policy",
+    "residual_action",
     "residual_config",
     "residual_vec_env",
     "save_residual",
@@ -99,8 +100,8 @@ def residual_config(table: Mapping[str, Any]) -> ResidualConfig:
     gains = table.get("gains", {})
     if not isinstance(gains, Mapping):
         raise ValueError(f"residual.gains must be a table of gains, got {gains!r}")
-    fields = {f.name for f in dataclasses.fields(BASELINES[name]) if f.init} - {"layout"}
-    unknown = set(gains) - fields
+    fields = _parameter_names(BASELINES[name])
+    unknown = set(gains) - set(fields)
     if unknown:
         raise ValueError(
             f"unknown gains {sorted(unknown)} in [residual.gains] of {name!r}; "
@@ -109,13 +110,23 @@ def residual_config(table: Mapping[str, Any]) -> ResidualConfig:
     return ResidualConfig(baseline=str(name), scale=float(scale), gains=dict(gains))
 
 
+def _parameter_names(cls: type[Baseline]) -> list[str]:
+    """The constructor fields of a baseline class but its layout: its gains and settings."""
+    return [f.name for f in dataclasses.fields(cls) if f.init and f.name != "layout"]
+
+
 def _baseline_parameters(baseline: Baseline) -> dict[str, Any]:
-    """Every constructor field of a baseline but its layout (JSON-ready: tuples → lists)."""
+    """Every gain and setting of a baseline (JSON-ready: tuples → lists)."""
     return {
-        f.name: (list(v) if isinstance(v := getattr(baseline, f.name), tuple) else v)
-        for f in dataclasses.fields(baseline)
-        if f.init and f.name != "layout"
+        name: (list(v) if isinstance(v := getattr(baseline, name), tuple) else v)
+        for name in _parameter_names(type(baseline))
     }
+
+
+def residual_action(base: NDArray, learned: NDArray, scale: float) -> NDArray:
+    """The env action clip(a_baseline + scale · a_learned, −1, 1) (one formula for training
+    and evaluation)."""
+    return np.clip(base + scale * np.asarray(learned), -1.0, 1.0)
 
 
 def save_residual(run_dir: str | Path, baseline: Baseline, scale: float) -> Path:
@@ -197,8 +208,7 @@ class ResidualPolicy:
         learned part is a feed-forward network)."""
         base, memory = self.baseline.predict(observation, state=state, episode_start=episode_start)
         learned, _ = self.learned.predict(observation, deterministic=deterministic)
-        action = np.clip(base + self.scale * np.asarray(learned), -1.0, 1.0)
-        return action.astype(np.float32), memory
+        return residual_action(base, learned, self.scale).astype(np.float32), memory
 
 
 def load_agent_policy(path: str | Path, device: str = "cpu") -> ModelPolicy | ResidualPolicy:
@@ -242,7 +252,7 @@ def _residual_vec_env_class() -> type:
                 raise RuntimeError("reset the residual VecEnv before stepping it")
             base, _ = self.baseline.predict(self._obs, episode_start=self._starts)
             self._starts[:] = False
-            self.venv.step_async(np.clip(base + self.scale * np.asarray(actions), -1.0, 1.0))
+            self.venv.step_async(residual_action(base, actions, self.scale))
 
         def step_wait(self) -> Any:
             obs, rewards, dones, infos = self.venv.step_wait()
@@ -253,7 +263,7 @@ def _residual_vec_env_class() -> type:
     return ResidualVecEnv
 
 
-def residual_vec_env(venv: Any, config: ResidualConfig, env_id: str) -> tuple[Any, Baseline]:
+def residual_vec_env(venv: Any, config: ResidualConfig, env_id: str) -> Any:
     """Wrap an SB3 VecEnv of raw observations so that its actions are residuals.
 
     Parameters
@@ -267,11 +277,11 @@ def residual_vec_env(venv: Any, config: ResidualConfig, env_id: str) -> tuple[An
 
     Returns
     -------
-    (VecEnv, Baseline)
-        The wrapper and the baseline it runs (for :func:`save_residual`).
+    VecEnv
+        The wrapper; its ``baseline`` and ``scale`` are what :func:`save_residual` records.
     """
     baseline = make_baseline(config.baseline, venv, env_id=env_id, **config.gains)
-    return _residual_vec_env_class()(venv, baseline, config.scale), baseline
+    return _residual_vec_env_class()(venv, baseline, config.scale)
 
 
 def find_residual(venv: Any) -> Any:

@@ -222,7 +222,7 @@ def make_training_env(config: TrainConfig) -> Any:
     if config.residual is not None:
         from ship_gym.agents.residual import residual_vec_env
 
-        venv, _ = residual_vec_env(venv, config.residual, config.env_id)
+        venv = residual_vec_env(venv, config.residual, config.env_id)
     if config.safe is not None:  # r − λc, between the monitor (true returns) and the normaliser
         from ship_gym.agents.lagrangian import make_cost_shaped
 

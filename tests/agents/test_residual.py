@@ -50,9 +50,8 @@ def test_bad_residual_tables_name_the_key_and_value(table, message):
 
 def test_wrapper_steps_the_env_with_the_baseline_plus_the_scaled_residual():
     scale = 0.4
-    wrapped, baseline = residual_vec_env(
-        make_sb3_vec_env(ENV, 3, seed=5), ResidualConfig("fins", scale), ENV
-    )
+    wrapped = residual_vec_env(make_sb3_vec_env(ENV, 3, seed=5), ResidualConfig("fins", scale), ENV)
+    baseline = wrapped.baseline
     # an SB3 VecEnv has no spec: the env id given selects the per-env gains and is recorded
     assert baseline.layout.env_id == ENV
     gains = DEFAULT_GAINS[("fins", "RollOneDOF")]

@@ -197,15 +197,21 @@ class _ReferenceComfort(_ReferenceStep):
         return self._comfort_reward_terms(stats, self.sample)
 
 
-class ReferenceRollStabilizationTask(_ReferenceTravel, _ReferenceComfort, RollStabilizationTask):
+class _ReferenceSurfaceTravel(_ReferenceTravel, _ReferenceComfort):
+    """The former travel of a comfort task's one commanded surface (servo ``servo``)."""
+
     def _travel(self):
         return (self.actuator_angles()[:, 0] - self._ref_before) / (
-            FIN_SERVO.max_rate * self.control_dt
+            self.servo.max_rate * self.control_dt
         )
 
     def _apply_actions(self, actions):
         self._ref_before[:] = self.actuator_angles()[:, 0]
         super()._apply_actions(actions)
+
+
+class ReferenceRollStabilizationTask(_ReferenceSurfaceTravel, RollStabilizationTask):
+    servo = FIN_SERVO
 
     def _extra_observations(self):
         return np.column_stack(
@@ -241,15 +247,8 @@ class ReferenceRollStabilizationTask(_ReferenceTravel, _ReferenceComfort, RollSt
         }
 
 
-class ReferenceRideControlTask(_ReferenceTravel, _ReferenceComfort, RideControlTask):
-    def _travel(self):
-        return (self.actuator_angles()[:, 0] - self._ref_before) / (
-            FOIL_SERVO.max_rate * self.control_dt
-        )
-
-    def _apply_actions(self, actions):
-        self._ref_before[:] = self.actuator_angles()[:, 0]
-        super()._apply_actions(actions)
+class ReferenceRideControlTask(_ReferenceSurfaceTravel, RideControlTask):
+    servo = FOIL_SERVO
 
     def _extra_observations(self):
         return np.column_stack(
