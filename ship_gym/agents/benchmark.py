@@ -8,15 +8,17 @@ For each task (:data:`TASKS`) the benchmark
    draws the later ones from their generators; a held-out seed below that is refused);
 2. trains the task's shipped configs (:mod:`ship_gym.agents.configs`) with ``n_seeds`` training
    seeds each (``ship-gym train`` runs under ``<out>/runs/<task>/<config>/seed<k>``; a finished
-   run is reused, so an interrupted benchmark resumes) and evaluates every trained policy on the
-   same held-out seeds;
+   run of the same config is reused, so an interrupted benchmark resumes) and evaluates every
+   trained policy on the same held-out seeds;
 3. writes ``<out>/results.md`` (one table per task: task metric, effort = RMS action, capsize
    rate with its Wilson 95 % interval, return, safe-RL cost, wall time and steps/s of the
    training), ``<out>/results.json``, a learning-curve figure per task
    (``<out>/curves_<task>.png``: mean return of the last 100 training episodes against time
-   steps, one line per seed), and copies the best training seed of every config into
+   steps, one line per seed, and beside it the deterministic policy's return on the validation
+   seeds of a config with a ``[validation]`` table, :mod:`ship_gym.agents.validation`), and
+   copies the best training seed of every config into
    ``<out>/policies/<task>/<config>/`` (``model.zip``, ``vecnormalize.pkl``, ``config.toml``,
-   ``residual.json`` of a residual policy), so
+   ``residual.json`` of a residual policy, ``validation.csv``), so
    that ``ship-gym evaluate --policies model:<that folder>`` reproduces the table without
    training.
 
@@ -120,32 +122,54 @@ TASKS: dict[str, BenchmarkTask] = {
 """The benchmark's tasks by name."""
 
 
-def _run_is_complete(run: Path, timesteps: int, env_id: str) -> bool:
-    """A finished training run of ``env_id`` (a run of an earlier version of the env, e.g.
-    RollStabilization-v1 under a v2 benchmark, is not reused) with ≥ ``timesteps`` steps."""
+_RUN_ONLY = ("output_dir", "progress_bar", "tensorboard", "total_timesteps")
+"""``[training]`` keys that do not change what a run learns (the budget is checked apart)."""
+
+
+def _learning_setup(raw: dict) -> dict:
+    """A config without the keys of :data:`_RUN_ONLY`."""
+    setup = {k: v for k, v in raw.items() if k != "training"}
+    setup["training"] = {k: v for k, v in raw.get("training", {}).items() if k not in _RUN_ONLY}
+    return setup
+
+
+def _run_is_complete(run: Path, config: Any) -> bool:
+    """A finished training run of ``config`` (:class:`~ship_gym.agents.train.TrainConfig`) with ≥
+    its ``total_timesteps``: the same env id and version, algorithm, hyperparameters, residual,
+    safe and validation tables and seed (a run of an earlier config is not reused)."""
     from ship_gym.envs.saved_policies import read_run_config
 
     summary = run / "summary.json"
     if not (summary.is_file() and (run / "model.zip").is_file()):
         return False
     try:
-        trained_on = read_run_config(run / "config.toml")["env"]["id"]
+        trained = read_run_config(run / "config.toml")
         return (
-            trained_on == env_id
-            and int(json.loads(summary.read_text())["num_timesteps"]) >= timesteps
+            _learning_setup(trained) == _learning_setup(dict(config.raw))
+            and int(json.loads(summary.read_text())["num_timesteps"]) >= config.total_timesteps
         )
     except (ValueError, KeyError, OSError):
         return False
 
 
 def _curve(run: Path) -> dict[str, list[float]]:
+    """The run's learning curve (``progress.csv``) and, when it has one, its deterministic
+    validation curve (``validation.csv``: ``validation_timesteps``, ``validation_return``)."""
     import csv
 
+    from ship_gym.agents.validation import VALIDATION_FILE
+
+    curve: dict[str, list[float]] = {"timesteps": [], "mean_return": [], "mean_cost": []}
     path = run / "progress.csv"
-    if not path.is_file():
-        return {"timesteps": [], "mean_return": []}
-    rows = list(csv.DictReader(path.open()))
-    return {k: [float(r[k]) for r in rows] for k in ("timesteps", "mean_return", "mean_cost")}
+    if path.is_file():
+        rows = list(csv.DictReader(path.open()))
+        curve = {k: [float(r[k]) for r in rows] for k in curve}
+    path = run / VALIDATION_FILE
+    if path.is_file():
+        rows = list(csv.DictReader(path.open()))
+        curve["validation_timesteps"] = [float(r["timesteps"]) for r in rows]
+        curve["validation_return"] = [float(r["mean_return"]) for r in rows]
+    return curve
 
 
 def _row(label: str, metrics: dict, task: BenchmarkTask, training: dict | None) -> dict:
@@ -173,7 +197,8 @@ def check_benchmark_arguments(
     tasks: Sequence[str], *, n_seeds: int, timesteps: int | None, episodes: int | None, seed: int
 ) -> None:
     """Refuse bad benchmark arguments before any work (ValueError naming the argument): unknown
-    tasks, non-positive counts, held-out seeds that overlap a training run's seeds."""
+    tasks, non-positive counts, held-out seeds that overlap a training run's seeds or the
+    validation seeds its checkpoint is chosen on."""
     from ship_gym.agents.train import load_config
 
     unknown = [t for t in tasks if t not in TASKS]
@@ -188,12 +213,22 @@ def check_benchmark_arguments(
     if timesteps is not None and (not isinstance(timesteps, int) or timesteps < 1):
         raise ValueError(f"timesteps must be a positive integer or None, got {timesteps!r}")
     for name in tasks:
+        n_episodes = episodes if episodes is not None else TASKS[name].episodes
+        held_out = range(seed, seed + n_episodes)
         for config_name in TASKS[name].configs:
-            top = n_seeds - 1 + load_config(config_name).n_envs - 1
+            config = load_config(config_name)
+            top = n_seeds - 1 + config.n_envs - 1
             if seed <= top:  # the training env of seed k resets with k … k + n_envs − 1
                 raise ValueError(
                     f"held-out seed {seed} overlaps the training seeds 0 … {top} of "
                     f"{config_name}; expected a seed > {top}"
+                )
+            chosen_on = config.validation.seeds if config.validation is not None else range(0)
+            if set(held_out) & set(chosen_on):  # the checkpoint is chosen on these episodes
+                raise ValueError(
+                    f"held-out seeds {held_out[0]} … {held_out[-1]} (seed {seed}) overlap the "
+                    f"validation seeds {chosen_on[0]} … {chosen_on[-1]} of {config_name}; "
+                    "expected held-out seeds apart from them"
                 )
 
 
@@ -274,7 +309,7 @@ def run_benchmark(
                     progress_bar=progress,
                     tensorboard=False,
                 )
-                if _run_is_complete(run, config.total_timesteps, config.env_id):
+                if _run_is_complete(run, config):
                     report(f"{name}/{config_name}/seed{k}: reusing the finished run")
                 else:
                     report(f"{name}/{config_name}/seed{k}: training {config.total_timesteps} steps")
@@ -291,6 +326,9 @@ def run_benchmark(
                     "wall_s": summary["wall_time_s"],
                     "steps_per_s": summary["steps_per_s"],
                 }
+                chosen = summary.get("validation", {})
+                if chosen.get("model") == "best":
+                    training["model_timesteps"] = chosen["best_timesteps"]
                 rows.append(_row(f"{config_name} seed {k}", metrics, task, training))
                 curves[config_name].append(_curve(run))
                 score = float(metrics[task.metric])
@@ -318,8 +356,10 @@ def run_benchmark(
 def _ship_policy(run: Path, to: Path) -> None:
     to.mkdir(parents=True, exist_ok=True)
     from ship_gym.agents.residual import RESIDUAL_FILE
+    from ship_gym.agents.validation import VALIDATION_FILE
 
-    for name in ("model.zip", "vecnormalize.pkl", "config.toml", "summary.json", RESIDUAL_FILE):
+    kept = ("model.zip", "vecnormalize.pkl", "config.toml", "summary.json")
+    for name in (*kept, RESIDUAL_FILE, VALIDATION_FILE):
         if (run / name).is_file():
             shutil.copy2(run / name, to / name)
 
@@ -387,6 +427,8 @@ def results_markdown(results: dict[str, Any]) -> str:
             wall = f"{r['wall_s']:.0f}" if "wall_s" in r else "–"
             rate = f"{r['steps_per_s']:.0f}" if r.get("steps_per_s") else "–"
             steps = f"{r['timesteps'] / 1000:.0f} k" if r.get("timesteps") else "–"
+            if r.get("model_timesteps"):
+                steps += f" (model at {r['model_timesteps'] / 1000:.0f} k)"
             if r.get("gain_vs_strongest") is not None:
                 gain = f"{100 * r['gain_vs_strongest']:+.0f} %"
             else:
@@ -411,18 +453,30 @@ def _plot_curves(name: str, task: BenchmarkTask, curves: dict[str, list[dict]], 
 
     from ship_gym.io_utils import atomic_write
 
-    fig, ax = plt.subplots(figsize=(7.0, 4.2))
+    validated = any("validation_return" in c for runs in curves.values() for c in runs)
+    fig, axes = plt.subplots(1, 2 if validated else 1, figsize=(12.0 if validated else 7.0, 4.2),
+                             squeeze=False)  # fmt: skip
     colours = [plt.get_cmap("tab10")(i) for i in range(10)]
     for c, (config, runs) in enumerate(curves.items()):
         for k, curve in enumerate(runs):
-            ax.plot(curve["timesteps"], curve["mean_return"], color=colours[c % 10],
-                    alpha=0.85, lw=1.2, label=config if k == 0 else None)  # fmt: skip
-    ax.set_xlabel("training time steps [-]")
-    ax.set_ylabel("mean return of the last 100 episodes [-]")
-    ax.set_title(f"{name} ({task.env_id}): one line per training seed", fontsize=9)
-    ax.grid(alpha=0.3)
-    if curves:
-        ax.legend(fontsize=8)
+            axes[0, 0].plot(curve["timesteps"], curve["mean_return"], color=colours[c % 10],
+                            alpha=0.85, lw=1.2, label=config if k == 0 else None)  # fmt: skip
+            if validated and "validation_return" in curve:
+                axes[0, 1].plot(curve["validation_timesteps"], curve["validation_return"],
+                                color=colours[c % 10], alpha=0.85, lw=1.2, marker=".",
+                                label=config if k == 0 else None)  # fmt: skip
+    axes[0, 0].set_ylabel("mean return of the last 100 training episodes [-]")
+    axes[0, 0].set_title(f"{name} ({task.env_id}): stochastic training policy, one line per "
+                         "training seed", fontsize=9)  # fmt: skip
+    if validated:
+        axes[0, 1].set_ylabel("mean return on the validation episodes [-]")
+        axes[0, 1].set_title("deterministic policy on the validation seeds (model.zip: the best "
+                             "point)", fontsize=9)  # fmt: skip
+    for ax in axes[0]:
+        ax.set_xlabel("training time steps [-]")
+        ax.grid(alpha=0.3)
+        if curves:
+            ax.legend(fontsize=8)
     fig.tight_layout()
     atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
     plt.close(fig)

@@ -33,6 +33,11 @@ Configuration (a TOML file, or the name of one shipped in :mod:`ship_gym.agents.
     baseline = "pid"              #   a = clip(a_pid + scale · a_learned)
     scale = 0.5                   #   (ship_gym.agents.residual; [residual.gains] overrides)
 
+    [validation]                  # optional: deterministic evaluation during training
+    every = 50_000                #   [time steps] on episodes of seeds first_seed … + episodes − 1
+    episodes = 8                  #   (ship_gym.agents.validation); keep_best = true makes
+    first_seed = 5000             #   model.zip the checkpoint of best validation return
+
     [safe]                        # optional: constrained RL on info["cost"] (PPO-Lagrangian)
     cost_limit = 5.0              # budget of the expected episode cost [control steps]
     lagrangian_lr = 0.05          # multiplier step; also lambda_init = 0, lambda_max = 100
@@ -44,6 +49,9 @@ copy of the configuration actually used, with command-line overrides), ``vecnorm
 rollout the time steps, wall time, mean return, length and cost of the last 100 episodes, and
 λ) and ``summary.json`` (time steps, wall time, steps/s, last mean episode return and cost,
 final λ), and ``residual.json`` (the baseline with all its gains) for a residual run. With a
+``[validation]`` table it also gets ``validation.csv`` (the deterministic policy's evaluations)
+and, with ``keep_best``, ``model.zip`` (and ``vecnormalize.pkl``) is the best evaluated
+checkpoint, ``final_model.zip`` (``final_vecnormalize.pkl``) the last. With a
 ``[safe]`` table the reward is shaped by a Lagrange multiplier on the cost
 (:mod:`ship_gym.agents.lagrangian`). All files are written atomically.
 :func:`ship_gym.agents.residual.load_agent_policy` reads the directory back.
@@ -63,12 +71,20 @@ from typing import Any
 from ship_gym.agents.configs import find_config
 from ship_gym.agents.lagrangian import SafeConfig, safe_config
 from ship_gym.agents.residual import ResidualConfig, residual_config
+from ship_gym.agents.validation import VALIDATION_FILE, ValidationConfig, validation_config
 
 __all__ = ["TrainConfig", "load_config", "make_training_env", "train"]
 
 from ship_gym.envs.saved_policies import ALGORITHMS
 
 VECTORIZATIONS = ("vector", "dummy")
+_VALIDATION_FILES = (
+    "final_model.zip",
+    "final_vecnormalize.pkl",
+    "best_model.zip",
+    "best_vecnormalize.pkl",
+    VALIDATION_FILE,
+)
 
 
 @dataclass(frozen=True)
@@ -93,6 +109,7 @@ class TrainConfig:
     torch_threads: int | None = None
     safe: SafeConfig | None = None
     residual: ResidualConfig | None = None
+    validation: ValidationConfig | None = None
     raw: Mapping[str, Any] = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
@@ -125,6 +142,7 @@ _KNOWN = {
     "algorithm": {"name", "policy", "hyperparameters", "policy_kwargs"},
     "safe": {"cost_limit", "lagrangian_lr", "lambda_init", "lambda_max"},
     "residual": {"baseline", "scale", "gains"},
+    "validation": {"every", "episodes", "first_seed", "keep_best"},
     "training": {
         "total_timesteps",
         "seed",
@@ -174,6 +192,7 @@ def config_from_mapping(data: Mapping[str, Any]) -> TrainConfig:
         torch_threads=training.get("torch_threads"),
         safe=safe_config(data["safe"]) if "safe" in data else None,
         residual=residual_config(data["residual"]) if "residual" in data else None,
+        validation=validation_config(data["validation"]) if "validation" in data else None,
         raw=copy.deepcopy(dict(data)),
     )
 
@@ -341,6 +360,8 @@ def train(config: TrainConfig) -> Path:
     # a summary marks a finished run (the benchmark reuses such runs): an earlier run's must not
     # stand beside this run's config while this one trains
     (out / "summary.json").unlink(missing_ok=True)
+    for stale in _VALIDATION_FILES:  # nor an earlier run's checkpoints and evaluations
+        (out / stale).unlink(missing_ok=True)
     atomic_write_text(out / "config.toml", dump_toml(config.raw))
     venv = make_training_env(config)
     if config.residual is not None:
@@ -367,6 +388,18 @@ def train(config: TrainConfig) -> Path:
 
         callbacks.append(lagrange_multiplier_callback(config.safe))
     callbacks.append(curve := learning_curve_callback())
+    validation: Any = None
+    if (vconf := config.validation) is not None:
+        from ship_gym.agents.validation import validation_callback
+
+        validation = validation_callback(
+            vconf,
+            config.env_id,
+            config.env_kwargs,
+            out,
+            cost_limit=config.safe.cost_limit if config.safe is not None else None,
+        )
+        callbacks.append(validation)
     t0 = time.perf_counter()
     try:
         model.learn(
@@ -377,10 +410,23 @@ def train(config: TrainConfig) -> Path:
         )
     finally:
         wall = time.perf_counter() - t0
-        atomic_write(out / "model.zip", lambda p: model.save(p))
+        selected = (
+            vconf is not None
+            and vconf.keep_best
+            and validation.best is not None
+            and (out / "best_model.zip").is_file()
+        )
+        final = "final_" if selected else ""
+        atomic_write(out / f"{final}model.zip", lambda p: model.save(p))
         if isinstance(venv, VecNormalize):
-            atomic_write(out / "vecnormalize.pkl", lambda p: venv.save(str(p)))
+            atomic_write(out / f"{final}vecnormalize.pkl", lambda p: venv.save(str(p)))
+        if selected:  # the best checkpoint becomes the run's model
+            (out / "best_model.zip").replace(out / "model.zip")
+            if (out / "best_vecnormalize.pkl").is_file():
+                (out / "best_vecnormalize.pkl").replace(out / "vecnormalize.pkl")
         atomic_write_text(out / "progress.csv", curve.csv())
+        if validation is not None:
+            atomic_write_text(out / VALIDATION_FILE, validation.csv())
         episodes = list(model.ep_info_buffer or [])
         summary = {
             "env_id": config.env_id,
@@ -398,6 +444,16 @@ def train(config: TrainConfig) -> Path:
             "recent_mean_cost": curve.rows[-1]["mean_cost"] if curve.rows else None,
             "final_lambda": curve.rows[-1]["lambda"] if curve.rows else None,
         }
+        if vconf is not None and validation.best is not None:
+            chosen = validation.rows[validation.best]
+            summary["validation"] = {
+                "seeds": [vconf.seeds[0], vconf.seeds[-1]],
+                "evaluations": len(validation.rows),
+                "model": "best" if selected else "final",
+                "best_timesteps": int(chosen["timesteps"]),
+                "best_mean_return": chosen["mean_return"],
+                "final_mean_return": validation.rows[-1]["mean_return"],
+            }
         atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
         venv.close()
     return out

@@ -82,7 +82,8 @@ def load_policy(path: str | Path, device: str = "cpu", *, residual: bool = False
     """Load a model saved by :mod:`ship_gym.agents.train` (a run directory or a ``.zip``).
 
     The algorithm is read from the run's ``config.toml`` when present, else every SB3 algorithm
-    is tried. A ``vecnormalize.pkl`` beside the model is applied to the observations.
+    is tried. A ``vecnormalize.pkl`` beside the model is applied to the observations (for
+    ``<prefix>model.zip``, e.g. ``final_model.zip``, the ``<prefix>vecnormalize.pkl``).
 
     A residual run (``residual.json`` beside the model) holds only the correction of a classical
     controller: it is refused unless ``residual`` is True (what
@@ -123,7 +124,10 @@ def load_policy(path: str | Path, device: str = "cpu", *, residual: bool = False
     if model is None:
         raise ValueError(f"could not load {zip_path} with {names}: {errors}")
     normalizer = None
-    norm_path = run_dir / "vecnormalize.pkl"
+    # each checkpoint beside its own statistics: model.zip + vecnormalize.pkl, and the
+    # validation's final_model.zip + final_vecnormalize.pkl (ship_gym.agents.validation)
+    prefix = zip_path.name.removesuffix("model.zip") if zip_path.name.endswith("model.zip") else ""
+    norm_path = run_dir / f"{prefix}vecnormalize.pkl"
     if norm_path.exists():
         with open(norm_path, "rb") as fh:
             normalizer = pickle.load(fh)

@@ -67,15 +67,35 @@ def test_shipped_policy_reproduces_its_row_and_a_rerun_reuses_the_runs(tiny, tmp
     assert "## Other (`ship_gym/Other-v0`)" in (out / "results.md").read_text()
 
 
-def test_a_run_of_another_env_version_or_a_shorter_budget_is_not_reused(tiny):
+def test_only_a_run_of_the_same_config_and_budget_is_reused(tiny):
+    import copy
+
     from ship_gym.agents.benchmark import _run_is_complete
+    from ship_gym.agents.train import config_from_mapping, load_config
 
     out, _, _ = tiny
     run = out / "runs" / "RollOneDOF" / "ppo_roll_one_dof" / "seed0"
-    assert _run_is_complete(run, 512, "ship_gym/RollOneDOF-v0")
-    assert not _run_is_complete(run, 512, "ship_gym/RollOneDOF-v1")  # an env version bump
-    assert not _run_is_complete(run, 10**6, "ship_gym/RollOneDOF-v0")  # a larger budget
-    assert not _run_is_complete(out / "runs" / "missing", 512, "ship_gym/RollOneDOF-v0")
+
+    def config(edit=None, **overrides):
+        settings = dict(seed=0, output_dir=str(run), total_timesteps=512) | overrides
+        raw = copy.deepcopy(dict(load_config("ppo_roll_one_dof", **settings).raw))
+        if edit is not None:
+            edit(raw)
+        return config_from_mapping(raw)
+
+    assert _run_is_complete(run, config())
+    # where the run is written and how it reports do not change what it learned
+    assert _run_is_complete(run, config(output_dir="elsewhere", progress_bar=True))
+    assert not _run_is_complete(run, config(total_timesteps=10**6))  # a larger budget
+    assert not _run_is_complete(run, config(seed=1))
+    assert not _run_is_complete(  # an env version bump
+        run, config(lambda raw: raw["env"].update(id="ship_gym/RollOneDOF-v1"))
+    )
+    assert not _run_is_complete(  # another hyperparameter
+        run, config(lambda raw: raw["algorithm"]["hyperparameters"].update(n_epochs=3))
+    )
+    assert not _run_is_complete(run, config(lambda raw: raw.update(validation={"every": 64})))
+    assert not _run_is_complete(out / "runs" / "missing", config())
 
 
 def test_bad_arguments_are_refused(tmp_path):
@@ -85,6 +105,11 @@ def test_bad_arguments_are_refused(tmp_path):
         run_benchmark(["RollOneDOF"], tmp_path, episodes=0)
     with pytest.raises(ValueError, match="overlaps the training seeds"):
         run_benchmark(["RollOneDOF"], tmp_path, seed=3, timesteps=64, episodes=1, progress=False)
+    # the shipped RollStabilization config chooses its checkpoint on seeds 5000-5015
+    with pytest.raises(ValueError, match=r"held-out seeds 4990 … 5029 \(seed 4990\) overlap the "
+                       r"validation seeds 5000 … 5015 of ppo_roll_stabilization"):  # fmt: skip
+        run_benchmark(["RollStabilization"], tmp_path, seed=4990, progress=False)
+    assert not any(tmp_path.iterdir())  # refused before any work
 
 
 def test_every_task_names_registered_ids_baselines_and_shipped_configs():
