@@ -22,6 +22,11 @@ For each task (:data:`TASKS`) the benchmark
    that ``ship-gym evaluate --policies model:<that folder>`` reproduces the table without
    training.
 
+With a gain frontier (:attr:`BenchmarkTask.frontier`), the task's tuned baseline is also run with
+its gains scaled up and down (:mod:`ship_gym.agents.frontier`) on the same held-out episodes, and
+each learned policy is set against that family *at the policy's own effort* (column "vs baseline
+at same effort"; ``<out>/frontier_<task>.png``: task metric against effort).
+
 The target of issue #16 is read off each table: the learned policy's metric ≥ 20 % better than
 the strongest baseline's (the baseline best on the metric), at equal or lower effort; the table
 says whether it is met (``target``).
@@ -29,6 +34,7 @@ says whether it is met (``target``).
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import shutil
@@ -37,6 +43,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
+
+from ship_gym.agents.frontier import FrontierPoint, baseline_frontier, metric_at_effort
 
 __all__ = ["TASKS", "BenchmarkTask", "check_benchmark_arguments", "run_benchmark"]
 
@@ -65,6 +73,10 @@ class BenchmarkTask:
         Held-out episodes per policy of the published table.
     env_kwargs : dict
         Environment keyword arguments of every policy's episodes.
+    frontier : str or None
+        The baseline whose gain-scaled family (:mod:`ship_gym.agents.frontier`) is run on the
+        held-out episodes, so that each learned policy is also compared with it at the
+        policy's own effort; None for a task without a loop gain to scale.
     """
 
     env_id: str
@@ -75,6 +87,7 @@ class BenchmarkTask:
     timesteps: int | None = None
     episodes: int = 40
     env_kwargs: dict = field(default_factory=dict)
+    frontier: str | None = None
 
 
 TASKS: dict[str, BenchmarkTask] = {
@@ -85,6 +98,7 @@ TASKS: dict[str, BenchmarkTask] = {
         ("zero", "pid"),
         ("ppo_course_keeping", "ppo_residual_course_keeping"),
         None,  # each config's own budget: 500 k from scratch, 1 M for the residual
+        frontier="pid",
     ),
     "RollStabilization": BenchmarkTask(
         "ship_gym/RollStabilization-v2",
@@ -93,6 +107,7 @@ TASKS: dict[str, BenchmarkTask] = {
         ("zero", "fins"),
         ("ppo_roll_stabilization",),
         500_000,
+        frontier="fins",
     ),
     "RideControl": BenchmarkTask(
         "ship_gym/RideControl-v2",
@@ -101,6 +116,7 @@ TASKS: dict[str, BenchmarkTask] = {
         ("zero", "ride"),
         ("sac_ride_control",),
         100_000,  # a third of the shipped 300 k: SAC runs at ≈ 150–200 steps/s
+        frontier="ride",
     ),
     "CapsizeAvoidance": BenchmarkTask(
         "ship_gym/CapsizeAvoidance-v2",
@@ -296,6 +312,11 @@ def run_benchmark(
         )
         for label, metrics in base["policies"].items():
             rows.append(_row(label, metrics, task, None))
+        frontier: list[FrontierPoint] = []
+        if task.frontier is not None:
+            held_out = list(range(seed, seed + n_episodes))
+            frontier = baseline_frontier(task.env_id, task.frontier, task.metric, held_out,
+                                         task.env_kwargs, progress=progress)  # fmt: skip
         for config_name in task.configs:
             curves[config_name] = []
             best: tuple[float, Path] | None = None
@@ -336,7 +357,7 @@ def run_benchmark(
                     best = (score, run)
             if best is not None:
                 _ship_policy(best[1], out / "policies" / name / config_name)
-        results["tasks"][name] = _verdict(task, rows)
+        results["tasks"][name] = _verdict(task, rows, frontier)
         results["tasks"][name].update(
             curves=curves,
             seed=seed,
@@ -346,6 +367,8 @@ def run_benchmark(
             date=time.strftime("%Y-%m-%d"),
         )
         _plot_curves(name, task, curves, out / f"curves_{name}.png")
+        if frontier:
+            _plot_frontier(name, task, results["tasks"][name], out / f"frontier_{name}.png")
     from ship_gym.io_utils import atomic_write_text
 
     atomic_write_text(out / "results.json", json.dumps(results, indent=2, default=float))
@@ -364,8 +387,11 @@ def _ship_policy(run: Path, to: Path) -> None:
             shutil.copy2(run / name, to / name)
 
 
-def _verdict(task: BenchmarkTask, rows: list[dict]) -> dict[str, Any]:
-    """The rows, the strongest baseline and, per learned row, whether the target is met."""
+def _verdict(
+    task: BenchmarkTask, rows: list[dict], frontier: Sequence[FrontierPoint] = ()
+) -> dict[str, Any]:
+    """The rows, the strongest baseline and, per learned row, whether the target is met and,
+    with a gain frontier, the gain against the baseline family at the row's own effort."""
     baselines = [r for r in rows if "config" not in r and r["policy"] != "zero"]
     strongest = min(baselines, key=lambda r: r["metric"]) if baselines else None
     for r in rows:
@@ -376,12 +402,21 @@ def _verdict(task: BenchmarkTask, rows: list[dict]) -> dict[str, Any]:
         gain = (ref - r["metric"]) / ref if ref > 0 else None
         r["gain_vs_strongest"] = gain
         r["target"] = bool(gain is not None and gain >= 0.2 and r["effort"] <= strongest["effort"])
+        if frontier:
+            at_effort = metric_at_effort(frontier, r["effort"])
+            r["frontier_metric"] = at_effort
+            r["gain_at_effort"] = (
+                (at_effort - r["metric"]) / at_effort if at_effort is not None and at_effort > 0
+                else None
+            )  # fmt: skip
     return {
         "env_id": task.env_id,
         "metric": task.metric,
         "metric_label": task.metric_label,
         "strongest_baseline": strongest["policy"] if strongest else None,
         "rows": rows,
+        "frontier_baseline": task.frontier if frontier else None,
+        "frontier": [dataclasses.asdict(p) for p in frontier],
     }
 
 
@@ -419,8 +454,9 @@ def results_markdown(results: dict[str, Any]) -> str:
             f"{task['strongest_baseline']}.",
             "",
             f"| policy | {task['metric_label']} | effort | capsize [95 % CI] | return | cost | "
-            "training steps | training wall [s] | steps/s | vs strongest | target |",
-            "|---|---|---|---|---|---|---|---|---|---|---|",
+            "training steps | training wall [s] | steps/s | vs strongest | target | "
+            "vs baseline at same effort |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|",
         ]
         for r in task["rows"]:
             low, high = r["capsize_ci95"]
@@ -434,14 +470,27 @@ def results_markdown(results: dict[str, Any]) -> str:
             else:
                 gain = "baseline at 0" if "gain_vs_strongest" in r else "–"
             target = ("met" if r["target"] else "not met") if "target" in r else "–"
+            if r.get("gain_at_effort") is not None:
+                matched = f"{100 * r['gain_at_effort']:+.0f} % (vs {r['frontier_metric']:.4g})"
+            else:
+                matched = "outside the gain range" if "gain_at_effort" in r else "–"
             lines.append(
                 f"| {r['policy']} | {r['metric']:.4g} | {r['effort']:.3f} | "
                 f"{r['capsized']}/{r['episodes']} [{low:.2f}, {high:.2f}] | "
                 f"{r['mean_return']:.0f} | {r['mean_cost']:.2f} | {steps} | {wall} | {rate} | "
-                f"{gain} | "
-                f"{target} |"
+                f"{gain} | {target} | {matched} |"
             )
         lines += ["", f"![learning curves](curves_{name}.png)", ""]
+        if task.get("frontier"):
+            factors = ", ".join(f"{p['factor']:g}" for p in task["frontier"])
+            lines += [
+                f"*vs baseline at same effort*: against {task['frontier_baseline']} with its "
+                f"gains scaled by {factors} (`ship_gym.agents.frontier`), on the same held-out "
+                "episodes, read at the policy's own effort.",
+                "",
+                f"![effort frontier](frontier_{name}.png)",
+                "",
+            ]
     return "\n".join(lines)
 
 
@@ -477,6 +526,44 @@ def _plot_curves(name: str, task: BenchmarkTask, curves: dict[str, list[dict]], 
         ax.grid(alpha=0.3)
         if curves:
             ax.legend(fontsize=8)
+    fig.tight_layout()
+    atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
+    plt.close(fig)
+
+
+def _plot_frontier(name: str, task: BenchmarkTask, result: dict[str, Any], path: Path) -> None:
+    """Task metric against effort: the baseline's gain family, the baselines, the policies."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ship_gym.io_utils import atomic_write
+
+    fig, ax = plt.subplots(figsize=(7.0, 4.6))
+    points = result["frontier"]
+    ax.plot([p["effort"] for p in points], [p["metric"] for p in points], "-o", color="0.45",
+            ms=4, label=f"{result['frontier_baseline']}, gains x c")  # fmt: skip
+    for p in points:
+        ax.annotate(f"c={p['factor']:g}", (p["effort"], p["metric"]), fontsize=7,
+                    textcoords="offset points", xytext=(3, 3), color="0.35")  # fmt: skip
+    colours = [plt.get_cmap("tab10")(i) for i in range(10)]
+    configs: list[str] = []
+    for r in result["rows"]:
+        if "config" in r:
+            first = r["config"] not in configs
+            if first:
+                configs.append(r["config"])
+            c = configs.index(r["config"])
+            ax.plot(r["effort"], r["metric"], "D", color=colours[c % 10], ms=6,
+                    label=r["config"] if first else None)  # fmt: skip
+        elif r["policy"] != "zero":
+            ax.plot(r["effort"], r["metric"], "s", color="k", ms=7, label=f"{r['policy']} (tuned)")
+    ax.set_xlabel("effort: RMS action [-]")
+    ax.set_ylabel(task.metric_label)
+    ax.set_title(f"{name} ({task.env_id}): held-out episodes; lower left is better", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
     fig.tight_layout()
     atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
     plt.close(fig)
