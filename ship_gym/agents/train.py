@@ -129,6 +129,16 @@ class TrainConfig:
             )
         if not isinstance(self.seed, int):
             raise ValueError(f"training.seed must be an integer, got {self.seed!r}")
+        if self.validation is not None:
+            chosen_on = set(self.validation.seeds)
+            first_episodes = range(self.seed, self.seed + self.n_envs)  # SB3's rule: seed + i
+            if chosen_on & set(first_episodes):
+                raise ValueError(
+                    f"validation seeds {self.validation.seeds[0]} … {self.validation.seeds[-1]} "
+                    f"overlap the training episodes' seeds {first_episodes[0]} … "
+                    f"{first_episodes[-1]} (training.seed {self.seed}, env.n_envs "
+                    f"{self.n_envs}); expected validation.first_seed apart from them"
+                )
         if self.torch_threads is not None and (
             not isinstance(self.torch_threads, int) or self.torch_threads < 1
         ):

@@ -47,6 +47,18 @@ def test_bad_validation_tables_name_the_key_and_value(table, message):
         config_from_mapping({"env": {"id": ENV}, "validation": table})
 
 
+def test_validation_seeds_may_not_be_training_episodes():
+    data = {"env": {"id": ENV, "n_envs": 4}, "training": {"seed": 4998}, "validation": {}}
+    message = (
+        r"validation seeds 5000 … 5007 overlap the training episodes' seeds 4998 … 5001 "
+        r"\(training.seed 4998, env.n_envs 4\)"
+    )
+    with pytest.raises(ValueError, match=message):
+        config_from_mapping(data)
+    data["training"]["seed"] = 4996  # episodes 4996 … 4999
+    assert config_from_mapping(data).validation == ValidationConfig()
+
+
 def test_defaults_and_seeds():
     config = validation_config({"episodes": 3, "first_seed": 70})
     assert config == ValidationConfig(every=50_000, episodes=3, first_seed=70, keep_best=True)
