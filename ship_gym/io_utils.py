@@ -8,7 +8,7 @@ import os
 import stat
 import tempfile
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 
 #: When this module was imported: temporary files older than this were not made by this process.
@@ -120,6 +120,14 @@ def atomic_write(
 def atomic_write_text(path: str | Path, text: str) -> Path:
     """Atomically write a text file (UTF-8)."""
     return atomic_write(path, lambda p: p.write_text(text, encoding="utf-8"))
+
+
+def csv_text(columns: Sequence[str], rows: Iterable[Mapping[str, float]]) -> str:
+    """A CSV table of numeric rows: a header of ``columns``, then each row's values in that
+    order (10 significant digits)."""
+    lines = [",".join(columns)]
+    lines += [",".join(f"{row[k]:.10g}" for k in columns) for row in rows]
+    return "\n".join(lines) + "\n"
 
 
 def to_json_value(x: object) -> object:

@@ -164,6 +164,10 @@ def env_layout(env: Any) -> EnvLayout:
     )
 
 
+_GAIN_PREFIXES = ("k_", "gain")
+"""Field-name prefixes of a baseline's feedback gains."""
+
+
 @dataclass
 class Baseline:
     """A classical controller with SB3's ``predict`` signature (subclasses set the law).
@@ -184,9 +188,19 @@ class Baseline:
         override the defaults (same names as the dataclass fields)."""
         return cls(layout=env_layout(env), **gains)
 
+    @classmethod
+    def parameter_names(cls) -> list[str]:
+        """The constructor fields but ``layout``: the controller's gains and settings."""
+        return [f.name for f in dataclasses.fields(cls) if f.init and f.name != "layout"]
+
+    @classmethod
+    def gain_names(cls) -> list[str]:
+        """The parameters that are feedback gains (``k_*``, ``gain*``: finite and ≥ 0)."""
+        return [name for name in cls.parameter_names() if name.startswith(_GAIN_PREFIXES)]
+
     def __post_init__(self) -> None:
         for key, value in self.__dict__.items():
-            if key.startswith(("k_", "gain")) and not (
+            if key.startswith(_GAIN_PREFIXES) and not (
                 isinstance(value, int | float) and math.isfinite(value) and value >= 0.0
             ):
                 raise ValueError(

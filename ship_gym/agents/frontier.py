@@ -4,18 +4,18 @@ A tuned controller is one point of a trade-off: more gain buys a smaller task er
 heading error, vertical acceleration) with more actuator effort, up to saturation. Comparing a
 learned policy with that one point says little when the two use different effort — a policy
 that rolls 17 % less with 14 % more fin may or may not be better than the same fins driven
-harder. The frontier answers it: the baseline's gains (every ``k_*`` field, e.g. k_φ and k_p of
-the fin law, K_p, K_d and K_i of the PID) multiplied by factors c around 1 — a one-parameter
-family through the tuned point, c = 1, which scales the loop gain and keeps the tuned shape of
-the law (the PID's zeros, the ratio of roll-angle to roll-rate feedback) — each run on the same
-episodes as the policies compared. :func:`metric_at_effort` reads the family's task metric at a
-given effort off the non-dominated points (linear interpolation in effort), so a learned
-policy's metric can be set against the classical one *at its own effort*.
+harder. The frontier answers it: the baseline's feedback gains
+(:meth:`~ship_gym.agents.baselines.Baseline.gain_names`, e.g. k_φ and k_p of the fin law, K_p,
+K_d and K_i of the PID) multiplied by factors c around 1 — a one-parameter family through the
+tuned point, c = 1, which scales the loop gain and keeps the tuned shape of the law (the PID's
+zeros, the ratio of roll-angle to roll-rate feedback) — each run on the same episodes as the
+policies compared. :func:`metric_at_effort` reads the family's task metric at a given effort off
+the non-dominated points (linear interpolation in effort), so a learned policy's metric can be
+set against the classical one *at its own effort*.
 """
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -72,11 +72,7 @@ def gain_scaled_baseline(
     if not (isinstance(factor, int | float) and np.isfinite(factor) and factor > 0):
         raise ValueError(f"factor must be a finite number > 0, got {factor!r}")
     tuned = make_baseline(name, env, env_id=env_id)
-    gains = {
-        f.name: getattr(tuned, f.name) * float(factor)
-        for f in dataclasses.fields(tuned)
-        if f.init and f.name.startswith("k_")
-    }
+    gains = {key: getattr(tuned, key) * float(factor) for key in tuned.gain_names()}
     if not gains:
         raise ValueError(f"baseline {name!r} has no k_* gains to scale")
     return make_baseline(name, env, env_id=env_id, **gains)

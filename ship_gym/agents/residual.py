@@ -29,7 +29,6 @@ reads a run back as a :class:`ResidualPolicy` (or a plain
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import json
 import math
@@ -100,7 +99,7 @@ def residual_config(table: Mapping[str, Any]) -> ResidualConfig:
     gains = table.get("gains", {})
     if not isinstance(gains, Mapping):
         raise ValueError(f"residual.gains must be a table of gains, got {gains!r}")
-    fields = _parameter_names(BASELINES[name])
+    fields = BASELINES[name].parameter_names()
     unknown = set(gains) - set(fields)
     if unknown:
         raise ValueError(
@@ -110,16 +109,11 @@ def residual_config(table: Mapping[str, Any]) -> ResidualConfig:
     return ResidualConfig(baseline=str(name), scale=float(scale), gains=dict(gains))
 
 
-def _parameter_names(cls: type[Baseline]) -> list[str]:
-    """The constructor fields of a baseline class but its layout: its gains and settings."""
-    return [f.name for f in dataclasses.fields(cls) if f.init and f.name != "layout"]
-
-
 def _baseline_parameters(baseline: Baseline) -> dict[str, Any]:
     """Every gain and setting of a baseline (JSON-ready: tuples → lists)."""
     return {
         name: (list(v) if isinstance(v := getattr(baseline, name), tuple) else v)
-        for name in _parameter_names(type(baseline))
+        for name in baseline.parameter_names()
     }
 
 

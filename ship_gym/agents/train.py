@@ -71,20 +71,20 @@ from typing import Any
 from ship_gym.agents.configs import find_config
 from ship_gym.agents.lagrangian import SafeConfig, safe_config
 from ship_gym.agents.residual import ResidualConfig, residual_config
-from ship_gym.agents.validation import VALIDATION_FILE, ValidationConfig, validation_config
+from ship_gym.agents.validation import (
+    BEST,
+    FINAL,
+    VALIDATION_RUN_FILES,
+    ValidationConfig,
+    checkpoint_files,
+    validation_config,
+)
 
 __all__ = ["TrainConfig", "load_config", "make_training_env", "train"]
 
 from ship_gym.envs.saved_policies import ALGORITHMS
 
 VECTORIZATIONS = ("vector", "dummy")
-_VALIDATION_FILES = (
-    "final_model.zip",
-    "final_vecnormalize.pkl",
-    "best_model.zip",
-    "best_vecnormalize.pkl",
-    VALIDATION_FILE,
-)
 
 
 @dataclass(frozen=True)
@@ -346,10 +346,10 @@ def learning_curve_callback() -> Any:
             )
 
         def csv(self) -> str:
+            from ship_gym.io_utils import csv_text
+
             keys = ("timesteps", "wall_s", "mean_return", "mean_length", "mean_cost", "lambda")
-            lines = [",".join(keys)]
-            lines += [",".join(f"{row[k]:.10g}" for k in keys) for row in self.rows]
-            return "\n".join(lines) + "\n"
+            return csv_text(keys, self.rows)
 
     return _Curve()
 
@@ -370,7 +370,7 @@ def train(config: TrainConfig) -> Path:
     # a summary marks a finished run (the benchmark reuses such runs): an earlier run's must not
     # stand beside this run's config while this one trains
     (out / "summary.json").unlink(missing_ok=True)
-    for stale in _VALIDATION_FILES:  # nor an earlier run's checkpoints and evaluations
+    for stale in VALIDATION_RUN_FILES:  # nor an earlier run's checkpoints and evaluations
         (out / stale).unlink(missing_ok=True)
     atomic_write_text(out / "config.toml", dump_toml(config.raw))
     venv = make_training_env(config)
@@ -399,11 +399,11 @@ def train(config: TrainConfig) -> Path:
         callbacks.append(lagrange_multiplier_callback(config.safe))
     callbacks.append(curve := learning_curve_callback())
     validation: Any = None
-    if (vconf := config.validation) is not None:
+    if config.validation is not None:
         from ship_gym.agents.validation import validation_callback
 
         validation = validation_callback(
-            vconf,
+            config.validation,
             config.env_id,
             config.env_kwargs,
             out,
@@ -420,23 +420,16 @@ def train(config: TrainConfig) -> Path:
         )
     finally:
         wall = time.perf_counter() - t0
-        selected = (
-            vconf is not None
-            and vconf.keep_best
-            and validation.best is not None
-            and (out / "best_model.zip").is_file()
-        )
-        final = "final_" if selected else ""
-        atomic_write(out / f"{final}model.zip", lambda p: model.save(p))
+        selected = validation is not None and validation.keeps_best
+        model_file, normalizer_file = checkpoint_files(FINAL if selected else "")
+        atomic_write(out / model_file, lambda p: model.save(p))
         if isinstance(venv, VecNormalize):
-            atomic_write(out / f"{final}vecnormalize.pkl", lambda p: venv.save(str(p)))
+            atomic_write(out / normalizer_file, lambda p: venv.save(str(p)))
         if selected:  # the best checkpoint becomes the run's model
-            (out / "best_model.zip").replace(out / "model.zip")
-            if (out / "best_vecnormalize.pkl").is_file():
-                (out / "best_vecnormalize.pkl").replace(out / "vecnormalize.pkl")
+            for best, run in zip(checkpoint_files(BEST), checkpoint_files(""), strict=True):
+                if (out / best).is_file():
+                    (out / best).replace(out / run)
         atomic_write_text(out / "progress.csv", curve.csv())
-        if validation is not None:
-            atomic_write_text(out / VALIDATION_FILE, validation.csv())
         episodes = list(model.ep_info_buffer or [])
         summary = {
             "env_id": config.env_id,
@@ -454,10 +447,10 @@ def train(config: TrainConfig) -> Path:
             "recent_mean_cost": curve.rows[-1]["mean_cost"] if curve.rows else None,
             "final_lambda": curve.rows[-1]["lambda"] if curve.rows else None,
         }
-        if vconf is not None and validation.best is not None:
+        if validation is not None and validation.best is not None:
             chosen = validation.rows[validation.best]
             summary["validation"] = {
-                "seeds": [vconf.seeds[0], vconf.seeds[-1]],
+                "seeds": [validation.seeds[0], validation.seeds[-1]],
                 "evaluations": len(validation.rows),
                 "model": "best" if selected else "final",
                 "best_timesteps": int(chosen["timesteps"]),

@@ -31,15 +31,35 @@ from pathlib import Path
 from typing import Any
 
 __all__ = [
+    "BEST",
+    "FINAL",
     "VALIDATION_FILE",
+    "VALIDATION_RUN_FILES",
     "ValidationConfig",
     "best_evaluation",
+    "checkpoint_files",
     "validation_callback",
     "validation_config",
 ]
 
 VALIDATION_FILE = "validation.csv"
 """Name of the evaluations table in a run folder."""
+
+BEST = "best_"
+"""File-name prefix of the best checkpoint while training runs."""
+FINAL = "final_"
+"""File-name prefix of the last checkpoint when the best one is kept as the run's model."""
+
+
+def checkpoint_files(prefix: str) -> tuple[str, str]:
+    """The model and observation-statistics file names of a checkpoint with ``prefix`` (""
+    for the run's own ``model.zip``, ``vecnormalize.pkl``; the loader pairs them the same way:
+    :func:`ship_gym.envs.saved_policies.load_policy`)."""
+    return f"{prefix}model.zip", f"{prefix}vecnormalize.pkl"
+
+
+VALIDATION_RUN_FILES = (*checkpoint_files(BEST), *checkpoint_files(FINAL), VALIDATION_FILE)
+"""The files a validated run adds to its folder (removed when a new run starts there)."""
 
 _COLUMNS = (
     "timesteps",
@@ -149,12 +169,13 @@ def validation_callback(
     of the steps collected) and at the end of training. It saves the best checkpoint as
     ``best_model.zip`` (and ``best_vecnormalize.pkl``) and the table ``validation.csv`` in
     ``out_dir`` as it goes; ``rows`` holds the evaluations, ``best`` the index of the best,
-    ``csv()`` the table."""
+    ``keeps_best`` whether the run's model is to be that checkpoint, ``seeds`` the validation
+    seeds, ``csv()`` the table."""
     from stable_baselines3.common.callbacks import BaseCallback
     from stable_baselines3.common.vec_env import VecNormalize
 
     from ship_gym.agents.evaluate import run_episodes, summarize
-    from ship_gym.io_utils import atomic_write, atomic_write_text
+    from ship_gym.io_utils import atomic_write, atomic_write_text, csv_text
 
     out = Path(out_dir)
 
@@ -163,8 +184,13 @@ def validation_callback(
             super().__init__()
             self.rows: list[dict[str, float]] = []
             self.best: int | None = None
+            self.seeds = config.seeds
             self._next = config.every
             self._t0 = time.perf_counter()
+
+        @property
+        def keeps_best(self) -> bool:
+            return config.keep_best and self.best is not None
 
         def _on_step(self) -> bool:
             return True
@@ -191,16 +217,15 @@ def validation_callback(
             self.logger.record("validation/rms_action", row["rms_action"])
             best = best_evaluation(self.rows, cost_limit)
             if best == len(self.rows) - 1 and best != self.best:
-                atomic_write(out / "best_model.zip", lambda p: self.model.save(p))
+                model_file, normalizer_file = checkpoint_files(BEST)
+                atomic_write(out / model_file, lambda p: self.model.save(p))
                 env = self.training_env
                 if isinstance(env, VecNormalize):
-                    atomic_write(out / "best_vecnormalize.pkl", lambda p: env.save(str(p)))
+                    atomic_write(out / normalizer_file, lambda p: env.save(str(p)))
             self.best = best
             atomic_write_text(out / VALIDATION_FILE, self.csv())  # readable while training
 
         def csv(self) -> str:
-            lines = [",".join(_COLUMNS)]
-            lines += [",".join(f"{row[k]:.10g}" for k in _COLUMNS) for row in self.rows]
-            return "\n".join(lines) + "\n"
+            return csv_text(_COLUMNS, self.rows)
 
     return _Validation()
