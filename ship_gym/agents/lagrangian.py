@@ -1,82 +1,199 @@
-"""Constrained RL by a Lagrange multiplier on the Safe-RL cost (PPO-Lagrangian, any SB3 algorithm).
+"""Constrained RL by a Lagrange multiplier (PPO-Lagrangian, any SB3 algorithm): a Safe-RL cost
+budget or an actuator-effort budget.
 
-The problem: maximise the expected return J_r(π) subject to the expected episode cost
-J_c(π) = E[Σ_t c_t] ≤ d, with c_t = ``info["cost"]`` of the ship envs (the fraction of the
-control step spent violating the task's safety constraints, 1 in the step that capsizes:
-:mod:`ship_gym.envs.ship_task`), so J_c is the expected time in violation [control steps] and d
-(``cost_limit``) a budget of it. Its Lagrangian relaxation, max_π min_{λ≥0} J_r − λ (J_c − d), is
-solved by the two-time-scale scheme of the Safety Gym baselines (Ray, Achiam & Amodei 2019,
-"Benchmarking Safe Exploration in Deep Reinforcement Learning", §5; Stooke, Achiam & Abbeel
-2020 for the multiplier update):
+The problem: maximise the expected return J_r(π) subject to one constraint J(π) ≤ d, either
+
+* the **cost** constraint (``[safe] cost_limit = d``): J_c(π) = E[Σ_t c_t] the expected episode
+  cost, c_t = ``info["cost"]`` of the ship envs (the fraction of the control step spent
+  violating the task's safety constraints, 1 in the step that capsizes:
+  :mod:`ship_gym.envs.ship_task`), so J_c is the expected time in violation [control steps]
+  and d a budget of it; or
+* the **effort** constraint (``[safe] effort_limit = e``): J_e(π) = E[c_t] the mean square of
+  the applied action per step, c_t = mean over the action entries of clip(a_t, −1, 1)² (for a
+  residual policy the total command, baseline plus correction: :func:`record_action_effort`),
+  with d = e², e the allowed RMS action [-]. This is the benchmark's effort rule ("at equal or
+  lower actuator effort", :mod:`ship_gym.agents.benchmark`) as a constraint: the policy learns
+  the most it can do with a baseline's effort instead of being compared with it afterwards.
+  As the episode RMS is the square root of the episode mean square, E[RMS] ≤ √E[c] = e
+  (Jensen), so the constraint also bounds the benchmark's mean RMS action.
+  ``effort_limit = "fins"`` (a baseline's name, :data:`ship_gym.agents.baselines.BASELINES`)
+  makes the budget that classical controller's own effort (its per-env default gains, the
+  benchmark's tuned baseline): e² is its mean square action over :data:`CALIBRATION_EPISODES`
+  episodes of the training distribution, measured before training
+  (:func:`resolve_effort_budget`), and the validation compares each checkpoint with the
+  baseline's RMS action on the validation episodes themselves. That is the fair form of "at
+  equal or lower effort": the effort of any controller depends on the seas drawn (the fins of
+  RollStabilization-v2 use 0.25–0.32 RMS on different sets of 16–64 episodes), while the ratio
+  of two controllers' efforts on the same episodes varies by a few per cent.
+
+Its Lagrangian relaxation, max_π min_{λ≥0} J_r − λ (J − d), is solved by the two-time-scale
+scheme of the Safety Gym baselines (Ray, Achiam & Amodei 2019, "Benchmarking Safe Exploration in
+Deep Reinforcement Learning", §5; Stooke, Achiam & Abbeel 2020 for the multiplier update):
 
 * the policy is trained by the unconstrained algorithm on the shaped reward r_t − λ c_t
   (:func:`make_cost_shaped`; the advantage of r − λc is A_r − λA_c, so one critic of the shaped
   reward replaces the separate cost critic of the original — exact for the returns, approximate
   for a learned value function);
-* after every rollout, λ ← clip(λ + η (Ĵ_c − d), 0, λ_max) by projected gradient ascent on the
-  dual, Ĵ_c the mean cost of the episodes completed since the last update
-  (:func:`lagrange_multiplier_callback`; η = ``lagrangian_lr``).
+* after every rollout, by projected gradient ascent on the dual (η = ``lagrangian_lr``,
+  :func:`lagrange_multiplier_callback`):
 
-The callback logs ``safe/lambda``, ``safe/episode_cost`` and ``safe/cost_limit`` to SB3's logger
-(tensorboard). :func:`ship_gym.agents.train.train` uses both when the config has a ``[safe]``
-table (``cost_limit``, ``lagrangian_lr``, ``lambda_init``, ``lambda_max``).
+  - cost: λ ← clip(λ + η (Ĵ_c − d), 0, λ_max), Ĵ_c the mean cost of the episodes completed
+    since the last update (λ waits while none has);
+  - effort: λ ← clip(λ + η (Ĵ_e / e² − 1), 0, λ_max), Ĵ_e the mean of c_t over the rollout's
+    steps less the exploration noise's share of it (below). The violation is relative, so η
+    means the same for any budget; λ is an extra price of the mean-square action in reward
+    units per step, comparable with the envs' own ``effort_weight``.
+
+The exploration noise. A stochastic policy's applied action is its mean plus noise, so the
+rollout's mean square exceeds the deterministic policy's (the one evaluated and deployed) by the
+noise variance: ≈ s² σ² for a diagonal Gaussian of standard deviations σ whose correction is
+scaled by s (s = 1, or the residual ``scale``). For the PPO/A2C Gaussian policies (state-
+independent σ = exp(log_std)) the callback subtracts s² · mean(σ²) from the rollout's mean
+square: exact to first order, slightly optimistic where the action clips (the clipped noise is
+smaller); other policies (SAC's squashed Gaussian, gSDE) are charged their noise, which makes
+the constraint conservative. The training run's validation (:mod:`ship_gym.agents.validation`)
+then checks the deterministic policy's RMS action against e on its own seeds.
+
+The callback logs ``safe/lambda`` and ``safe/episode_cost`` with ``safe/cost_limit``, or
+``safe/effort`` (the estimated deterministic RMS action) with ``safe/effort_limit``, to SB3's
+logger (tensorboard). :func:`ship_gym.agents.train.train` uses both when the config has a
+``[safe]`` table (``cost_limit`` or ``effort_limit``, ``lagrangian_lr``, ``lambda_init``,
+``lambda_max``).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
-__all__ = ["SafeConfig", "lagrange_multiplier_callback", "make_cost_shaped", "safe_config"]
+__all__ = [
+    "CALIBRATION_EPISODES",
+    "EFFORT_INFO_KEY",
+    "SAFE_KEYS",
+    "SafeConfig",
+    "lagrange_multiplier_callback",
+    "make_cost_shaped",
+    "record_action_effort",
+    "resolve_effort_budget",
+    "safe_config",
+]
+
+EFFORT_INFO_KEY = "action_mean_square"
+"""Step-info key of the applied action's mean square over its entries [-]
+(:func:`record_action_effort`)."""
+
+CALIBRATION_EPISODES = 64
+"""Episodes of the baseline measuring the training budget of ``effort_limit = "<baseline>"``."""
+
+SAFE_KEYS = ("cost_limit", "effort_limit", "lagrangian_lr", "lambda_init", "lambda_max")
+"""The keys of a ``[safe]`` table."""
 
 
 @dataclass(frozen=True)
 class SafeConfig:
-    """The ``[safe]`` table of a training config.
+    """The ``[safe]`` table of a training config: one constraint, ``cost_limit`` or
+    ``effort_limit``, and the multiplier's update.
 
     Attributes
     ----------
-    cost_limit : float
+    cost_limit : float or None
         Budget d of the expected episode cost [control steps in violation] (≥ 0).
+    effort_limit : float or None
+        Allowed RMS of the applied action e [-] (0 < e ≤ 1; the action space is [−1, 1]).
+    effort_baseline : str or None
+        The baseline whose effort is the budget (``effort_limit = "fins"`` in TOML);
+        :func:`resolve_effort_budget` then sets ``effort_limit`` from its measured effort.
     lagrangian_lr : float
-        Step η of the multiplier's update [1 / cost unit] (> 0).
+        Step η of the multiplier's update [1 / cost unit for a cost budget, - for an effort
+        budget] (> 0).
     lambda_init : float
-        Initial λ [-] (≥ 0).
+        Initial λ [reward / cost unit] (≥ 0).
     lambda_max : float
-        Upper bound of λ [-] (keeps the shaped reward bounded).
+        Upper bound of λ [reward / cost unit] (keeps the shaped reward bounded).
     """
 
-    cost_limit: float
+    cost_limit: float | None = None
+    effort_limit: float | None = None
+    effort_baseline: str | None = None
     lagrangian_lr: float = 0.05
     lambda_init: float = 0.0
     lambda_max: float = 100.0
 
+    def __post_init__(self) -> None:
+        effort = self.effort_limit is not None or self.effort_baseline is not None
+        if (self.cost_limit is None) == (not effort):
+            raise ValueError(
+                f"[safe] needs exactly one of cost_limit (an episode-cost budget, >= 0) and "
+                f"effort_limit (an RMS action in (0, 1], or a baseline's name); got cost_limit "
+                f"= {self.cost_limit!r}, effort_limit = "
+                f"{self.effort_baseline or self.effort_limit!r}"
+            )
+
+    @property
+    def constraint(self) -> str:
+        """``"cost"`` or ``"effort"``."""
+        return "cost" if self.cost_limit is not None else "effort"
+
+    @property
+    def info_key(self) -> str:
+        """The step-info key of the constrained per-step quantity c_t."""
+        return "cost" if self.cost_limit is not None else EFFORT_INFO_KEY
+
+    @property
+    def validation_limit(self) -> tuple[str, float]:
+        """The constraint on an evaluation: (column of :mod:`ship_gym.agents.validation`'s
+        table, its limit) — the mean episode cost, or the RMS action (a baseline's budget is
+        measured on the validation episodes instead: :func:`resolve_effort_budget`)."""
+        if self.cost_limit is not None:
+            return "mean_cost", self.cost_limit
+        if self.effort_limit is None:
+            raise ValueError(f"the effort budget of {self.effort_baseline!r} is not measured yet")
+        return "rms_action", self.effort_limit
+
 
 def safe_config(table: Mapping[str, Any]) -> SafeConfig:
-    """Validate a ``[safe]`` table (errors name the key as written)."""
-    known = {"cost_limit", "lagrangian_lr", "lambda_init", "lambda_max"}
-    unknown = sorted(set(table) - known)
+    """Validate a ``[safe]`` table (errors name the key as written and its value)."""
+    unknown = sorted(set(table) - set(SAFE_KEYS))
     if unknown:
-        raise ValueError(f"unknown keys {unknown} in [safe]; expected {sorted(known)}")
-    if "cost_limit" not in table:
-        raise ValueError("[safe] needs cost_limit (the episode-cost budget, >= 0)")
-    out: dict[str, float] = {}
-    for key, low, strict in (
-        ("cost_limit", 0.0, False),
-        ("lagrangian_lr", 0.0, True),
-        ("lambda_init", 0.0, False),
-        ("lambda_max", 0.0, True),
+        raise ValueError(f"unknown keys {unknown} in [safe]; expected {sorted(SAFE_KEYS)}")
+    if ("cost_limit" in table) == ("effort_limit" in table):
+        raise ValueError(
+            "[safe] needs exactly one of cost_limit (the episode-cost budget, >= 0) and "
+            "effort_limit (the allowed RMS action, in (0, 1])"
+        )
+    out: dict[str, Any] = {}
+    baseline = table.get("effort_limit")
+    if isinstance(baseline, str):
+        from ship_gym.agents.baselines import BASELINES
+
+        choices = sorted(set(BASELINES) - {"zero"})
+        if baseline not in choices:
+            raise ValueError(
+                f"[safe] effort_limit = {baseline!r}; expected an RMS action in (0, 1] or the "
+                f"name of a baseline, one of {choices}"
+            )
+        out["effort_baseline"] = baseline
+        table = {k: v for k, v in table.items() if k != "effort_limit"}
+    for key, low, strict, high in (
+        ("cost_limit", 0.0, False, math.inf),
+        ("effort_limit", 0.0, True, 1.0),
+        ("lagrangian_lr", 0.0, True, math.inf),
+        ("lambda_init", 0.0, False, math.inf),
+        ("lambda_max", 0.0, True, math.inf),
     ):
         if key not in table:
             continue
         value = table[key]
         ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
-        if not ok or value < low or (strict and value == low):
+        if not ok or value < low or (strict and value == low) or value > high:
             what = "> 0" if strict else ">= 0"
+            if high < math.inf:
+                what += f" and <= {high:g}"
             raise ValueError(f"[safe] {key} = {value!r}; expected a number {what}")
         out[key] = float(value)
     config = SafeConfig(**out)
@@ -88,13 +205,96 @@ def safe_config(table: Mapping[str, Any]) -> SafeConfig:
     return config
 
 
-def make_cost_shaped(venv: Any, lambda_init: float) -> Any:
-    """``venv`` (an SB3 VecEnv whose infos carry ``"cost"``) with reward r − λ c
-    (``CostShapedVecEnv``, built on first use so that SB3 is imported only then)."""
+def resolve_effort_budget(
+    safe: SafeConfig,
+    env_id: str,
+    env_kwargs: Mapping[str, Any],
+    training_seeds: Sequence[int],
+    validation_seeds: Sequence[int] | None,
+    *,
+    progress: bool = False,
+) -> tuple[SafeConfig, tuple[str, float] | None]:
+    """The numbers of a budget before training: (``safe`` with ``effort_limit`` set, the
+    validation's limit (column, value), None without validation).
+
+    For ``effort_limit = "<baseline>"`` the baseline (per-env default gains) runs on one episode
+    per training seed: e = √(mean square action over all their steps), the quantity the
+    multiplier constrains; with validation it also runs on the validation seeds, whose limit is
+    its mean RMS action there (the column the validation compares). Other budgets pass through.
+    """
+    if safe.effort_baseline is None or safe.effort_limit is not None:
+        return safe, (safe.validation_limit if validation_seeds is not None else None)
+    from dataclasses import replace
+
+    from ship_gym.agents.baselines import make_baseline
+    from ship_gym.agents.evaluate import run_episodes
+
+    name = safe.effort_baseline
+
+    def baseline(env: Any) -> Any:
+        return make_baseline(name, env)
+
+    calibration = run_episodes(
+        env_id, baseline, list(training_seeds), dict(env_kwargs), progress=progress,
+        label=f"{name} effort budget",
+    )  # fmt: skip
+    weights = calibration.lengths / np.sum(calibration.lengths)
+    effort = float(np.sqrt(np.sum(weights * calibration.rms_action**2)))
+    if not effort > 0.0:
+        raise ValueError(
+            f"[safe] effort_limit = {name!r}: the baseline used no effort on {env_id} "
+            f"(seeds {training_seeds[0]} … {training_seeds[-1]}); expected a positive budget"
+        )
+    resolved = replace(safe, effort_limit=min(effort, 1.0))
+    if validation_seeds is None:
+        return resolved, None
+    on_validation = run_episodes(
+        env_id, baseline, list(validation_seeds), dict(env_kwargs), progress=progress,
+        label=f"{name} validation effort",
+    )  # fmt: skip
+    return resolved, ("rms_action", float(np.mean(on_validation.rms_action)))
+
+
+def record_action_effort(venv: Any) -> Any:
+    """``venv`` (an SB3 VecEnv) whose step infos carry :data:`EFFORT_INFO_KEY`: the mean over
+    the action entries of clip(a, −1, 1)², a the action the wrapped env receives.
+
+    Placed below a residual wrapper it sees the total command (baseline plus correction), the
+    action whose effort the benchmark measures (:func:`ship_gym.agents.evaluate.run_episodes`).
+    """
+    from stable_baselines3.common.vec_env import VecEnvWrapper
+
+    class ActionEffortVecEnv(VecEnvWrapper):
+        def __init__(self, inner: Any) -> None:
+            super().__init__(inner)
+            self._mean_square: NDArray = np.zeros(inner.num_envs)
+
+        def reset(self) -> Any:
+            return self.venv.reset()
+
+        def step_async(self, actions: NDArray) -> None:
+            a = np.asarray(actions, dtype=float).reshape(self.num_envs, -1)
+            self._mean_square = np.mean(np.clip(a, -1.0, 1.0) ** 2, axis=1)
+            self.venv.step_async(actions)
+
+        def step_wait(self) -> Any:
+            obs, reward, done, infos = self.venv.step_wait()
+            for info, value in zip(infos, self._mean_square, strict=True):
+                info[EFFORT_INFO_KEY] = float(value)
+            return obs, reward, done, infos
+
+    return ActionEffortVecEnv(venv)
+
+
+def make_cost_shaped(venv: Any, lambda_init: float, info_key: str = "cost") -> Any:
+    """``venv`` (an SB3 VecEnv whose infos carry ``info_key``, the constrained per-step quantity
+    c_t) with reward r − λ c (``CostShapedVecEnv``, built on first use so that SB3 is imported
+    only then)."""
     from stable_baselines3.common.vec_env import VecEnvWrapper
 
     class CostShapedVecEnv(VecEnvWrapper):
-        """Reward r − λ c per step; tracks the cost of every episode (``episode_costs``).
+        """Reward r − λ c per step; tracks Σ c of every episode (``episode_costs``) and of the
+        steps since the last multiplier update (``step_cost_sum`` over ``step_count``).
 
         ``multiplier`` is λ (set by :func:`lagrange_multiplier_callback`); ``episode_costs``
         collects Σ c of the episodes that end, until the callback takes them.
@@ -103,7 +303,10 @@ def make_cost_shaped(venv: Any, lambda_init: float) -> Any:
         def __init__(self, inner: Any, multiplier: float) -> None:
             super().__init__(inner)
             self.multiplier = float(multiplier)
+            self.info_key = info_key
             self.episode_costs: list[float] = []
+            self.step_cost_sum = 0.0
+            self.step_count = 0
             self._running = np.zeros(inner.num_envs)
 
         def reset(self) -> Any:
@@ -112,8 +315,10 @@ def make_cost_shaped(venv: Any, lambda_init: float) -> Any:
 
         def step_wait(self) -> Any:
             obs, reward, done, infos = self.venv.step_wait()
-            cost = np.array([float(info.get("cost", 0.0)) for info in infos])
+            cost = np.array([float(info.get(self.info_key, 0.0)) for info in infos])
             self._running += cost
+            self.step_cost_sum += float(cost.sum())
+            self.step_count += cost.size
             for i in np.flatnonzero(done):
                 self.episode_costs.append(float(self._running[i]))
                 self._running[i] = 0.0
@@ -138,9 +343,29 @@ def find_cost_shaped(venv: Any) -> Any:
     raise ValueError("no cost-shaping wrapper in the VecEnv stack (make_cost_shaped)")
 
 
+def exploration_variance(model: Any) -> float:
+    """The exploration noise's share of the applied action's mean square [-]: s² · mean(σ²)
+    for a PPO/A2C diagonal-Gaussian policy of state-independent σ = exp(log_std), s the
+    residual ``scale`` of a residual run (1 otherwise); 0 for other policies (module
+    docstring)."""
+    policy = getattr(model, "policy", None)
+    log_std = getattr(policy, "log_std", None)
+    if log_std is None or getattr(policy, "use_sde", False):
+        return 0.0
+    from ship_gym.agents.residual import find_residual
+
+    try:
+        scale = float(find_residual(model.get_env()).scale)
+    except ValueError:  # not a residual run
+        scale = 1.0
+    variance = np.exp(2.0 * np.asarray(log_std.detach().cpu().numpy(), dtype=float))
+    return scale**2 * float(np.mean(variance))
+
+
 def lagrange_multiplier_callback(config: SafeConfig) -> Any:
     """An SB3 callback updating λ after every rollout (module docstring); built on first use so
-    that SB3 is imported only then. ``history`` holds (time steps, λ, Ĵ_c) per update."""
+    that SB3 is imported only then. ``history`` holds (time steps, λ, Ĵ) per update, Ĵ the mean
+    episode cost [control steps] or the estimated deterministic RMS action [-]."""
     from stable_baselines3.common.callbacks import BaseCallback
 
     class _Callback(BaseCallback):
@@ -155,15 +380,28 @@ def lagrange_multiplier_callback(config: SafeConfig) -> Any:
         def _on_rollout_end(self) -> None:
             shaped = find_cost_shaped(self.training_env)
             costs, shaped.episode_costs = shaped.episode_costs, []
-            if not costs:  # no episode ended in this rollout: λ waits
-                return
-            mean_cost = float(np.mean(costs))
+            total, count = shaped.step_cost_sum, shaped.step_count
+            shaped.step_cost_sum, shaped.step_count = 0.0, 0
             c = self.config
-            lam = shaped.multiplier + c.lagrangian_lr * (mean_cost - c.cost_limit)
+            if c.cost_limit is not None:
+                if not costs:  # no episode ended in this rollout: λ waits
+                    return
+                measured = float(np.mean(costs))
+                violation = measured - c.cost_limit
+                self.logger.record("safe/episode_cost", measured)
+                self.logger.record("safe/cost_limit", c.cost_limit)
+            else:
+                assert c.effort_limit is not None
+                if count == 0:
+                    return
+                mean_square = max(total / count - exploration_variance(self.model), 0.0)
+                measured = math.sqrt(mean_square)
+                violation = mean_square / c.effort_limit**2 - 1.0
+                self.logger.record("safe/effort", measured)
+                self.logger.record("safe/effort_limit", c.effort_limit)
+            lam = shaped.multiplier + c.lagrangian_lr * violation
             shaped.multiplier = float(min(max(lam, 0.0), c.lambda_max))
-            self.history.append((int(self.num_timesteps), shaped.multiplier, mean_cost))
+            self.history.append((int(self.num_timesteps), shaped.multiplier, measured))
             self.logger.record("safe/lambda", shaped.multiplier)
-            self.logger.record("safe/episode_cost", mean_cost)
-            self.logger.record("safe/cost_limit", c.cost_limit)
 
     return _Callback()

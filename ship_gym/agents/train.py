@@ -38,8 +38,10 @@ Configuration (a TOML file, or the name of one shipped in :mod:`ship_gym.agents.
     episodes = 8                  #   (ship_gym.agents.validation); keep_best = true makes
     first_seed = 5000             #   model.zip the checkpoint of best validation return
 
-    [safe]                        # optional: constrained RL on info["cost"] (PPO-Lagrangian)
-    cost_limit = 5.0              # budget of the expected episode cost [control steps]
+    [safe]                        # optional: constrained RL (PPO-Lagrangian), one budget:
+    cost_limit = 5.0              #   expected episode cost info["cost"] [control steps], or
+                                  #   effort_limit = 0.25: RMS of the applied action [-],
+                                  #   or = "fins": that baseline's effort (measured first)
     lagrangian_lr = 0.05          # multiplier step; also lambda_init = 0, lambda_max = 100
 
 A relative ``output_dir`` (or ``--output``) is taken from the working directory, whether the
@@ -52,14 +54,16 @@ final λ), and ``residual.json`` (the baseline with all its gains) for a residua
 ``[validation]`` table it also gets ``validation.csv`` (the deterministic policy's evaluations)
 and, with ``keep_best``, ``model.zip`` (and ``vecnormalize.pkl``) is the best evaluated
 checkpoint, ``final_model.zip`` (``final_vecnormalize.pkl``) the last. With a
-``[safe]`` table the reward is shaped by a Lagrange multiplier on the cost
-(:mod:`ship_gym.agents.lagrangian`). All files are written atomically.
+``[safe]`` table the reward is shaped by a Lagrange multiplier on the cost or on the
+action's mean square (:mod:`ship_gym.agents.lagrangian`), and the validation chooses among the
+checkpoints within the budget. All files are written atomically.
 :func:`ship_gym.agents.residual.load_agent_policy` reads the directory back.
 """
 
 from __future__ import annotations
 
 import copy
+import dataclasses
 import json
 import time
 import tomllib
@@ -69,7 +73,7 @@ from pathlib import Path
 from typing import Any
 
 from ship_gym.agents.configs import find_config
-from ship_gym.agents.lagrangian import SafeConfig, safe_config
+from ship_gym.agents.lagrangian import SAFE_KEYS, SafeConfig, safe_config
 from ship_gym.agents.residual import ResidualConfig, residual_config
 from ship_gym.agents.validation import (
     BEST,
@@ -150,7 +154,7 @@ class TrainConfig:
 _KNOWN = {
     "env": {"id", "n_envs", "vectorization", "normalize", "kwargs"},
     "algorithm": {"name", "policy", "hyperparameters", "policy_kwargs"},
-    "safe": {"cost_limit", "lagrangian_lr", "lambda_init", "lambda_max"},
+    "safe": set(SAFE_KEYS),
     "residual": {"baseline", "scale", "gains"},
     "validation": {"every", "episodes", "first_seed", "keep_best"},
     "training": {
@@ -235,8 +239,9 @@ def load_config(path: str | Path, **overrides: Any) -> TrainConfig:
 
 
 def make_training_env(config: TrainConfig) -> Any:
-    """The SB3 VecEnv of a config: batched adapter or DummyVecEnv, VecMonitor, the residual
-    wrapper (raw observations), cost shaping, VecNormalize."""
+    """The SB3 VecEnv of a config: batched adapter or DummyVecEnv, VecMonitor, the action's
+    effort recorder (an effort budget: below the residual, so it sees the total command), the
+    residual wrapper (raw observations), cost shaping, VecNormalize."""
     from stable_baselines3.common.vec_env import VecNormalize
 
     from ship_gym.envs.sb3 import make_sb3_vec_env
@@ -248,6 +253,10 @@ def make_training_env(config: TrainConfig) -> Any:
         vectorization=config.vectorization,
         env_kwargs=dict(config.env_kwargs),
     )
+    if config.safe is not None and config.safe.constraint == "effort":
+        from ship_gym.agents.lagrangian import record_action_effort
+
+        venv = record_action_effort(venv)
     if config.residual is not None:
         from ship_gym.agents.residual import residual_vec_env
 
@@ -255,7 +264,7 @@ def make_training_env(config: TrainConfig) -> Any:
     if config.safe is not None:  # r − λc, between the monitor (true returns) and the normaliser
         from ship_gym.agents.lagrangian import make_cost_shaped
 
-        venv = make_cost_shaped(venv, config.safe.lambda_init)
+        venv = make_cost_shaped(venv, config.safe.lambda_init, config.safe.info_key)
     if config.normalize:
         # the reward normaliser discounts with the algorithm's gamma (SB3 default 0.99)
         venv = VecNormalize(venv, gamma=float(config.hyperparameters.get("gamma", 0.99)))
@@ -373,6 +382,19 @@ def train(config: TrainConfig) -> Path:
     for stale in VALIDATION_RUN_FILES:  # nor an earlier run's checkpoints and evaluations
         (out / stale).unlink(missing_ok=True)
     atomic_write_text(out / "config.toml", dump_toml(config.raw))
+    validation_limit = None
+    if config.safe is not None:  # a baseline's effort budget is measured before training
+        from ship_gym.agents.lagrangian import CALIBRATION_EPISODES, resolve_effort_budget
+
+        safe, validation_limit = resolve_effort_budget(
+            config.safe,
+            config.env_id,
+            config.env_kwargs,
+            range(config.seed, config.seed + CALIBRATION_EPISODES),
+            config.validation.seeds if config.validation is not None else None,
+            progress=config.progress_bar,
+        )
+        config = dataclasses.replace(config, safe=safe)
     venv = make_training_env(config)
     if config.residual is not None:
         from ship_gym.agents.residual import find_residual, save_residual
@@ -407,7 +429,7 @@ def train(config: TrainConfig) -> Path:
             config.env_id,
             config.env_kwargs,
             out,
-            cost_limit=config.safe.cost_limit if config.safe is not None else None,
+            limit=validation_limit,
         )
         callbacks.append(validation)
     t0 = time.perf_counter()
@@ -447,6 +469,12 @@ def train(config: TrainConfig) -> Path:
             "recent_mean_cost": curve.rows[-1]["mean_cost"] if curve.rows else None,
             "final_lambda": curve.rows[-1]["lambda"] if curve.rows else None,
         }
+        if config.safe is not None and config.safe.constraint == "effort":
+            summary["effort_budget"] = {
+                "baseline": config.safe.effort_baseline,
+                "training_rms_action": config.safe.effort_limit,
+                "validation_rms_action": validation_limit[1] if validation_limit else None,
+            }
         if validation is not None and validation.best is not None:
             chosen = validation.rows[validation.best]
             summary["validation"] = {

@@ -13,8 +13,9 @@ validation return — the early-stopping rule of model selection, on seeds apart
 training episodes and the benchmark's held-out ones, so that the held-out result stays an
 unbiased estimate. The last checkpoint is kept as ``final_model.zip``.
 
-A run with a ``[safe]`` table selects among the evaluations whose mean cost is within the cost
-limit (the constrained problem's feasible set; the one of lowest cost when none is).
+A run with a ``[safe]`` table selects among the evaluations within its budget — mean episode cost
+≤ ``cost_limit``, or RMS action ≤ ``effort_limit`` (the constrained problem's feasible set on
+the validation seeds; the evaluation nearest to it when none is).
 
 The run folder gets ``validation.csv``: time steps, wall time [s], mean and standard deviation of
 the return, mean cost, capsize rate, effort (RMS action) and the task's RMS metrics of every
@@ -124,16 +125,24 @@ def validation_config(table: Mapping[str, Any]) -> ValidationConfig:
     )
 
 
-def best_evaluation(rows: Sequence[Mapping[str, float]], cost_limit: float | None = None) -> int:
-    """Index of the best evaluation: highest mean return; with ``cost_limit``, among those of
-    mean cost ≤ the limit (the lowest-cost one when none is). Ties go to the earliest."""
+def best_evaluation(
+    rows: Sequence[Mapping[str, float]], limit: tuple[str, float] | None = None
+) -> int:
+    """Index of the best evaluation: highest mean return; with ``limit`` = (column, value),
+    e.g. ``("mean_cost", 2.0)`` or ``("rms_action", 0.25)``, among those whose column is ≤ the
+    value (the one of the lowest column when none is). Ties go to the earliest."""
     if not rows:
         raise ValueError("no evaluations to choose from")
     candidates = list(range(len(rows)))
-    if cost_limit is not None:
-        feasible = [i for i in candidates if rows[i]["mean_cost"] <= cost_limit]
+    if limit is not None:
+        column, value = limit
+        if column not in rows[0]:
+            raise ValueError(
+                f"no column {column!r} in the evaluations; expected one of {sorted(rows[0])}"
+            )
+        feasible = [i for i in candidates if rows[i][column] <= value]
         if not feasible:
-            return min(candidates, key=lambda i: rows[i]["mean_cost"])
+            return min(candidates, key=lambda i: rows[i][column])
         candidates = feasible
     return max(candidates, key=lambda i: rows[i]["mean_return"])
 
@@ -162,7 +171,7 @@ def validation_callback(
     env_kwargs: Mapping[str, Any],
     out_dir: str | Path,
     *,
-    cost_limit: float | None = None,
+    limit: tuple[str, float] | None = None,
 ) -> Any:
     """An SB3 callback evaluating the deterministic policy on the validation seeds (module
     docstring), at the first rollout start after every ``config.every`` steps (after the update
@@ -170,7 +179,9 @@ def validation_callback(
     ``best_model.zip`` (and ``best_vecnormalize.pkl``) and the table ``validation.csv`` in
     ``out_dir`` as it goes; ``rows`` holds the evaluations, ``best`` the index of the best,
     ``keeps_best`` whether the run's model is to be that checkpoint, ``seeds`` the validation
-    seeds, ``csv()`` the table."""
+    seeds, ``csv()`` the table. ``limit`` (column, value) is a ``[safe]`` run's budget on an
+    evaluation (:attr:`ship_gym.agents.lagrangian.SafeConfig.validation_limit`; see
+    :func:`best_evaluation`)."""
     from stable_baselines3.common.callbacks import BaseCallback
     from stable_baselines3.common.vec_env import VecNormalize
 
@@ -215,7 +226,7 @@ def validation_callback(
             self.rows.append(row)
             self.logger.record("validation/mean_return", row["mean_return"])
             self.logger.record("validation/rms_action", row["rms_action"])
-            best = best_evaluation(self.rows, cost_limit)
+            best = best_evaluation(self.rows, limit)
             if best == len(self.rows) - 1 and best != self.best:
                 model_file, normalizer_file = checkpoint_files(BEST)
                 atomic_write(out / model_file, lambda p: self.model.save(p))

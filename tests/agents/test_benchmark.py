@@ -4,6 +4,7 @@ seeds, the table, curves and shipped policies; resume; refused arguments."""
 from __future__ import annotations
 
 import json
+import tomllib
 
 import pytest
 
@@ -163,14 +164,23 @@ def _shipped_policies():
 
 @pytest.mark.parametrize(("name", "folder", "task"), _shipped_policies())
 def test_shipped_policies_reproduce_their_rows_of_the_table(name, folder, task):
-    """`ship-gym evaluate` of a shipped policy gives its row of docs/benchmarks/results.md
-    exactly (same held-out seeds, deterministic policy and env)."""
+    """`ship-gym evaluate` of a shipped policy gives its training seed's row of
+    docs/benchmarks/results.md (same held-out seeds, deterministic policy and env).
+
+    Exactly on the machine that wrote the table; elsewhere (another CPU, other numpy/numba
+    builds) round-off differences of ≈ 1e-8 grow in closed loop, the more the more a policy
+    chatters: CourseKeeping's PPO from scratch gave a return of −182.50 against the table's
+    −182.26 and 2.215° against 2.208° on an AMD EPYC, the other policies agreed to 1e-8. Hence
+    1 %: far above that, below the 4–6 % by which the seeds of a config differ in return
+    (RideControl's aside), so a policy from another run, a changed env or evaluation fails."""
     ev = evaluate_policies(task["env_id"], [f"model:{folder}"], task["episodes"], task["seed"],
                            progress=False)  # fmt: skip
     metrics = next(iter(ev["policies"].values()))
-    rows = [r for r in task["rows"] if r.get("config") == folder.name]
-    assert rows, f"no row of {folder.name} in the {name} table"
-    match = [r for r in rows if r["mean_return"] == pytest.approx(metrics["mean_return"], 1e-9)]
-    assert match, (metrics["mean_return"], [r["mean_return"] for r in rows])
-    assert match[0]["metric"] == pytest.approx(metrics[task["metric"]], rel=1e-9)
-    assert match[0]["capsized"] == round(metrics["capsize_rate"] * task["episodes"])
+    seed = tomllib.loads((folder / "config.toml").read_text())["training"]["seed"]
+    rows = [
+        r for r in task["rows"] if (r.get("config"), r.get("training_seed")) == (folder.name, seed)
+    ]
+    assert len(rows) == 1, f"no row of {folder.name} seed {seed} in the {name} table"
+    assert rows[0]["mean_return"] == pytest.approx(metrics["mean_return"], rel=1e-2)
+    assert rows[0]["metric"] == pytest.approx(metrics[task["metric"]], rel=1e-2)
+    assert rows[0]["capsized"] == round(metrics["capsize_rate"] * task["episodes"])

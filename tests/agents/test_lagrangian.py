@@ -12,10 +12,14 @@ import pytest
 
 import ship_gym  # noqa: F401
 from ship_gym.agents.lagrangian import (
+    EFFORT_INFO_KEY,
     SafeConfig,
+    exploration_variance,
     find_cost_shaped,
     lagrange_multiplier_callback,
     make_cost_shaped,
+    record_action_effort,
+    resolve_effort_budget,
     safe_config,
 )
 from ship_gym.agents.train import config_from_mapping, train
@@ -107,7 +111,13 @@ def test_multiplier_rises_above_the_budget_falls_below_and_stays_in_bounds():
 @pytest.mark.parametrize(
     ("table", "message"),
     [
-        ({}, "needs cost_limit"),
+        ({}, "needs exactly one of cost_limit"),
+        ({"cost_limit": 1, "effort_limit": 0.2}, "needs exactly one of cost_limit"),
+        ({"effort_limit": 0}, r"effort_limit = 0; expected a number > 0 and <= 1"),
+        ({"effort_limit": 1.5}, r"effort_limit = 1.5; expected a number > 0 and <= 1"),
+        ({"effort_limit": True}, r"effort_limit = True; expected a number"),
+        ({"effort_limit": "zero"}, r"effort_limit = 'zero'; expected an RMS action .*\['fins'"),
+        ({"effort_limit": "fin"}, r"effort_limit = 'fin'; expected .* name of a baseline"),
         ({"cost_limit": -1}, r"cost_limit = -1; expected a number >= 0"),
         ({"cost_limit": 1, "lagrangian_lr": 0}, r"lagrangian_lr = 0; expected a number > 0"),
         ({"cost_limit": 1, "lambda": 1}, r"unknown keys \['lambda'\]"),
@@ -151,3 +161,215 @@ def test_training_with_a_cost_budget_writes_lambda_and_the_learning_curve(tmp_pa
     summary = json.loads((out / "summary.json").read_text())
     assert summary["final_lambda"] == pytest.approx(lambdas[-1])
     assert summary["recent_mean_cost"] > 0
+
+
+def test_safe_config_names_its_constraint_and_its_validation_limit():
+    cost = safe_config({"cost_limit": 2})
+    effort = safe_config({"effort_limit": 0.25, "lagrangian_lr": 0.02})
+    assert (cost.constraint, cost.info_key, cost.validation_limit) == (
+        "cost", "cost", ("mean_cost", 2.0))  # fmt: skip
+    assert (effort.constraint, effort.info_key, effort.validation_limit) == (
+        "effort", EFFORT_INFO_KEY, ("rms_action", 0.25))  # fmt: skip
+    with pytest.raises(ValueError, match="exactly one of cost_limit"):
+        SafeConfig()
+
+
+def test_the_effort_recorder_sees_the_clipped_total_residual_command():
+    """Below the residual wrapper the recorder sees clip(a_baseline + scale · a_learned): the
+    command whose RMS the benchmark calls effort, not the learned correction."""
+    from ship_gym.agents.residual import ResidualConfig, residual_vec_env
+
+    env_id = "ship_gym/RollOneDOF-v0"
+    recorded = record_action_effort(make_sb3_vec_env(env_id, 2, seed=3, env_kwargs=KWARGS))
+    residual = residual_vec_env(recorded, ResidualConfig(baseline="fins", scale=0.5), env_id)
+    plain = make_sb3_vec_env(env_id, 2, seed=3, env_kwargs=KWARGS)
+    from ship_gym.agents.baselines import make_baseline
+
+    fins = make_baseline("fins", plain, env_id=env_id)
+    residual.reset()
+    obs_p = plain.reset()
+    starts = np.ones(2, dtype=bool)
+    rng = np.random.default_rng(1)
+    base_seen = 0.0
+    for _ in range(40):
+        learned = rng.uniform(-1, 1, (2, 1))
+        base, _ = fins.predict(obs_p, episode_start=starts)
+        total = np.clip(base + 0.5 * learned, -1, 1)
+        _, _, dones, infos = residual.step(learned)
+        obs_p, _, _, _ = plain.step(total)
+        starts = np.asarray(dones, dtype=bool)
+        np.testing.assert_allclose(
+            [info[EFFORT_INFO_KEY] for info in infos], np.mean(total**2, axis=1), atol=1e-12
+        )
+        base_seen += float(np.abs(base).sum())
+    assert base_seen > 0  # the baseline acted, so the total differs from the learned part
+
+
+def _effort_callback(limit, lr=0.5, lam0=0.0, lam_max=1.0):
+    venv = make_cost_shaped(make_sb3_vec_env("ship_gym/RollOneDOF-v0", 1, seed=0), lam0,
+                            EFFORT_INFO_KEY)  # fmt: skip
+    cb = lagrange_multiplier_callback(
+        SafeConfig(effort_limit=limit, lagrangian_lr=lr, lambda_init=lam0, lambda_max=lam_max)
+    )
+    model = _Model(venv)
+    cb.init_callback(model)
+    return cb, find_cost_shaped(venv), model
+
+
+def test_effort_multiplier_follows_the_relative_violation_of_the_mean_square():
+    cb, shaped, model = _effort_callback(limit=0.2)
+    shaped.step_cost_sum, shaped.step_count = 0.08 * 10, 10  # mean square 0.08 = 2 × 0.2²
+    cb._on_rollout_end()
+    assert shaped.multiplier == pytest.approx(0.5 * (0.08 / 0.04 - 1.0))  # 0.5
+    assert (shaped.step_cost_sum, shaped.step_count) == (0.0, 0)  # taken by the update
+    assert model.logger.records["safe/effort"] == pytest.approx(0.08**0.5)
+    assert model.logger.records["safe/effort_limit"] == 0.2
+    shaped.step_cost_sum, shaped.step_count = 0.12 * 4, 4  # 3 × the budget: +1, clipped at 1
+    cb._on_rollout_end()
+    assert shaped.multiplier == pytest.approx(1.0)
+    cb._on_rollout_end()  # no steps: unchanged
+    assert shaped.multiplier == pytest.approx(1.0)
+    for _ in range(3):  # zero effort: λ -= 0.5 per update, projected on λ ≥ 0
+        shaped.step_cost_sum, shaped.step_count = 0.0, 8
+        cb._on_rollout_end()
+    assert shaped.multiplier == 0.0
+    assert [h[1] for h in cb.history] == pytest.approx([0.5, 1.0, 0.5, 0.0, 0.0])
+
+
+def test_exploration_variance_is_the_gaussian_policys_scaled_noise():
+    """PPO's state-independent σ = exp(log_std) (its share of the applied mean square), scaled
+    by the residual authority; policies without one are charged nothing."""
+    import torch
+    from stable_baselines3 import PPO
+
+    from ship_gym.agents.residual import ResidualConfig, residual_vec_env
+
+    env_id = "ship_gym/RollOneDOF-v0"
+    venv = make_sb3_vec_env(env_id, 1, seed=0)
+    model = PPO("MlpPolicy", venv, policy_kwargs={"log_std_init": -1.0}, device="cpu", n_steps=8)
+    assert exploration_variance(model) == pytest.approx(np.exp(-2.0))
+    residual = residual_vec_env(make_sb3_vec_env(env_id, 1, seed=0),
+                                ResidualConfig(baseline="fins", scale=0.3), env_id)  # fmt: skip
+    model = PPO("MlpPolicy", residual, device="cpu", n_steps=8)
+    with torch.no_grad():
+        model.policy.log_std.fill_(np.log(0.5))
+    assert exploration_variance(model) == pytest.approx(0.3**2 * 0.25)
+    assert exploration_variance(_Model(venv)) == 0.0
+
+
+def test_training_with_a_tight_effort_budget_raises_lambda(tmp_path):
+    """A residual on the fin controller with a budget of 0.05 RMS, far below the fins' own
+    effort in this strong forcing: λ grows every rollout (the recorder charges the total
+    command, not the small learned correction), and the validation keeps the checkpoint within
+    the budget or, when none is, the one of least effort."""
+    config = config_from_mapping(
+        {
+            "env": {"id": "ship_gym/RollOneDOF-v0", "n_envs": 2, "kwargs": KWARGS},
+            "algorithm": {
+                "name": "PPO",
+                "hyperparameters": {"n_steps": 128, "batch_size": 128, "n_epochs": 1},
+                "policy_kwargs": {"net_arch": [16], "log_std_init": -3.0},
+            },
+            "safe": {"effort_limit": 0.05, "lagrangian_lr": 0.01},
+            "residual": {"baseline": "fins", "scale": 0.3},
+            "validation": {"every": 512, "episodes": 2, "first_seed": 900},
+            "training": {
+                "total_timesteps": 2560,  # the curve starts at the first episode's end (1000)
+                "output_dir": str(tmp_path / "run"),
+                "progress_bar": False,
+                "tensorboard": False,
+                "torch_threads": 1,
+            },
+        }
+    )
+    out = train(config)
+    lambdas = [float(r["lambda"]) for r in csv.DictReader((out / "progress.csv").open())]
+    assert len(lambdas) >= 2 and lambdas[0] > 0
+    assert all(b >= a for a, b in itertools.pairwise(lambdas))
+    rows = list(csv.DictReader((out / "validation.csv").open()))
+    efforts = [float(r["rms_action"]) for r in rows]
+    summary = json.loads((out / "summary.json").read_text())
+    chosen = [int(float(r["timesteps"])) for r in rows].index(
+        summary["validation"]["best_timesteps"]
+    )
+    feasible = [e <= 0.05 for e in efforts]
+    if any(feasible):
+        assert feasible[chosen]
+    else:
+        assert efforts[chosen] == min(efforts)
+
+
+def test_a_baselines_effort_budget_is_its_measured_mean_square_and_validation_rms():
+    """``effort_limit = "fins"``: e = √(mean of a² over every step of the fins' episodes on the
+    training seeds), summed here by stepping the env by hand; the validation's limit is the
+    fins' mean RMS action over the validation episodes (the column it compares)."""
+    import gymnasium as gym
+
+    from ship_gym.agents.baselines import make_baseline
+    from ship_gym.agents.evaluate import run_episodes, summarize
+
+    env_id = "ship_gym/RollOneDOF-v0"
+    safe = safe_config({"effort_limit": "fins", "lagrangian_lr": 0.02})
+    assert safe.constraint == "effort" and safe.effort_baseline == "fins"
+    with pytest.raises(ValueError, match="not measured yet"):
+        _ = safe.validation_limit
+    resolved, limit = resolve_effort_budget(safe, env_id, KWARGS, [7, 8], [30, 31, 32])
+    squares, steps = 0.0, 0
+    for seed in (7, 8):
+        env = gym.make(env_id, **KWARGS)
+        fins = make_baseline("fins", env)
+        obs, _ = env.reset(seed=seed)
+        start, done = True, False
+        while not done:
+            action, _ = fins.predict(obs[None], episode_start=np.array([start]))
+            start = False
+            a = np.clip(action[0], -1, 1)
+            squares += float(np.mean(a**2))
+            steps += 1
+            obs, _, terminated, truncated, _ = env.step(a)
+            done = terminated or truncated
+    assert resolved.effort_limit == pytest.approx(np.sqrt(squares / steps), rel=1e-9)
+    assert resolved.effort_baseline == "fins" and resolved.lagrangian_lr == 0.02
+    fins_on_validation = summarize(run_episodes(env_id, lambda e: make_baseline("fins", e),
+                                                [30, 31, 32], KWARGS))  # fmt: skip
+    assert limit == ("rms_action", pytest.approx(fins_on_validation["rms_action"]))
+    assert 0.0 < limit[1] <= 1.0
+    # numeric budgets pass through; the validation's limit is the same number
+    number = safe_config({"effort_limit": 0.3})
+    assert resolve_effort_budget(number, env_id, KWARGS, [7], [30]) == (number, ("rms_action", 0.3))
+    assert resolve_effort_budget(number, env_id, KWARGS, [7], None) == (number, None)
+
+
+def test_training_on_a_baselines_budget_records_it_in_the_summary(tmp_path):
+    config = config_from_mapping(
+        {
+            "env": {"id": "ship_gym/RollOneDOF-v0", "n_envs": 2, "kwargs": KWARGS},
+            "algorithm": {
+                "name": "PPO",
+                "hyperparameters": {"n_steps": 64, "batch_size": 128, "n_epochs": 1},
+                "policy_kwargs": {"net_arch": [16]},
+            },
+            "safe": {"effort_limit": "fins"},
+            "validation": {"every": 128, "episodes": 2, "first_seed": 900},
+            "training": {
+                "total_timesteps": 256,
+                "seed": 3,
+                "output_dir": str(tmp_path / "run"),
+                "progress_bar": False,
+                "tensorboard": False,
+                "torch_threads": 1,
+            },
+        }
+    )
+    out = train(config)
+    budget = json.loads((out / "summary.json").read_text())["effort_budget"]
+    from ship_gym.agents.lagrangian import CALIBRATION_EPISODES
+
+    expected, limit = resolve_effort_budget(
+        config.safe, config.env_id, KWARGS, range(3, 3 + CALIBRATION_EPISODES), range(900, 902)
+    )
+    assert budget == {
+        "baseline": "fins",
+        "training_rms_action": pytest.approx(expected.effort_limit),
+        "validation_rms_action": pytest.approx(limit[1]),
+    }

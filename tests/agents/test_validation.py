@@ -72,9 +72,14 @@ def _rows(*pairs):
 def test_best_evaluation_is_the_highest_return_within_the_cost_limit():
     rows = _rows((-5.0, 3.0), (-1.0, 9.0), (-2.0, 1.0), (-1.0, 0.5))
     assert best_evaluation(rows) == 1  # ties go to the earliest
-    assert best_evaluation(rows, cost_limit=2.0) == 3  # -1.0 at cost 0.5 is feasible
-    assert best_evaluation(rows, cost_limit=1.0) == 3
-    assert best_evaluation(rows, cost_limit=0.1) == 3  # none feasible: the least cost
+    assert best_evaluation(rows, ("mean_cost", 2.0)) == 3  # -1.0 at cost 0.5 is feasible
+    assert best_evaluation(rows, ("mean_cost", 1.0)) == 3
+    assert best_evaluation(rows, ("mean_cost", 0.1)) == 3  # none feasible: the least cost
+    efforts = [dict(r, rms_action=e) for r, e in zip(rows, (0.1, 0.3, 0.2, 0.4), strict=True)]
+    assert best_evaluation(efforts, ("rms_action", 0.25)) == 2  # -2.0 at 0.2: best feasible
+    assert best_evaluation(efforts, ("rms_action", 0.05)) == 0  # none feasible: least effort
+    with pytest.raises(ValueError, match="no column 'rms'"):
+        best_evaluation(efforts, ("rms", 0.1))
     with pytest.raises(ValueError, match="no evaluations"):
         best_evaluation([])
 
