@@ -29,6 +29,32 @@ from ship_gym.envs.sb3 import make_sb3_vec_env
 KWARGS = {"forcing_amplitude": [0.05, 0.05], "dangerous_roll_angle": 0.1}  # [rad]
 
 
+def _tiny_config(tmp_path, safe, *, n_envs=4, n_steps=64, timesteps=2048, seed=0, policy=None,
+                 **sections):  # fmt: skip
+    """A PPO run of a few rollouts on the strongly forced 1-DOF roll, with a ``[safe]`` table
+    and optional extra tables (``residual``, ``validation``)."""
+    return config_from_mapping(
+        {
+            "env": {"id": "ship_gym/RollOneDOF-v0", "n_envs": n_envs, "kwargs": KWARGS},
+            "algorithm": {
+                "name": "PPO",
+                "hyperparameters": {"n_steps": n_steps, "batch_size": 128, "n_epochs": 1},
+                "policy_kwargs": {"net_arch": [16], **(policy or {})},
+            },
+            "safe": safe,
+            "training": {
+                "total_timesteps": timesteps,
+                "seed": seed,
+                "output_dir": str(tmp_path / "run"),
+                "progress_bar": False,
+                "tensorboard": False,
+                "torch_threads": 1,
+            },
+            **sections,
+        }
+    )
+
+
 def test_shaped_reward_is_reward_minus_lambda_times_cost():
     plain = make_sb3_vec_env("ship_gym/RollOneDOF-v0", 3, seed=4, env_kwargs=KWARGS)
     shaped = make_cost_shaped(make_sb3_vec_env("ship_gym/RollOneDOF-v0", 3, seed=4,
@@ -130,24 +156,7 @@ def test_bad_safe_tables_are_refused(table, message):
 
 
 def test_training_with_a_cost_budget_writes_lambda_and_the_learning_curve(tmp_path):
-    config = config_from_mapping(
-        {
-            "env": {"id": "ship_gym/RollOneDOF-v0", "n_envs": 4, "kwargs": KWARGS},
-            "algorithm": {
-                "name": "PPO",
-                "hyperparameters": {"n_steps": 64, "batch_size": 128, "n_epochs": 1},
-                "policy_kwargs": {"net_arch": [16]},
-            },
-            "safe": {"cost_limit": 0.0, "lagrangian_lr": 0.01},
-            "training": {
-                "total_timesteps": 2048,
-                "output_dir": str(tmp_path / "run"),
-                "progress_bar": False,
-                "tensorboard": False,
-                "torch_threads": 1,
-            },
-        }
-    )
+    config = _tiny_config(tmp_path, {"cost_limit": 0.0, "lagrangian_lr": 0.01})
     assert config.safe == SafeConfig(cost_limit=0.0, lagrangian_lr=0.01)
     out = train(config)
     rows = list(csv.DictReader((out / "progress.csv").open()))
@@ -262,25 +271,15 @@ def test_training_with_a_tight_effort_budget_raises_lambda(tmp_path):
     effort in this strong forcing: λ grows every rollout (the recorder charges the total
     command, not the small learned correction), and the validation keeps the checkpoint within
     the budget or, when none is, the one of least effort."""
-    config = config_from_mapping(
-        {
-            "env": {"id": "ship_gym/RollOneDOF-v0", "n_envs": 2, "kwargs": KWARGS},
-            "algorithm": {
-                "name": "PPO",
-                "hyperparameters": {"n_steps": 128, "batch_size": 128, "n_epochs": 1},
-                "policy_kwargs": {"net_arch": [16], "log_std_init": -3.0},
-            },
-            "safe": {"effort_limit": 0.05, "lagrangian_lr": 0.01},
-            "residual": {"baseline": "fins", "scale": 0.3},
-            "validation": {"every": 512, "episodes": 2, "first_seed": 900},
-            "training": {
-                "total_timesteps": 2560,  # the curve starts at the first episode's end (1000)
-                "output_dir": str(tmp_path / "run"),
-                "progress_bar": False,
-                "tensorboard": False,
-                "torch_threads": 1,
-            },
-        }
+    config = _tiny_config(
+        tmp_path,
+        {"effort_limit": 0.05, "lagrangian_lr": 0.01},
+        n_envs=2,
+        n_steps=128,
+        timesteps=2560,  # the curve starts at the first episode's end (1000)
+        policy={"log_std_init": -3.0},
+        residual={"baseline": "fins", "scale": 0.3},
+        validation={"every": 512, "episodes": 2, "first_seed": 900},
     )
     out = train(config)
     lambdas = [float(r["lambda"]) for r in csv.DictReader((out / "progress.csv").open())]
@@ -341,25 +340,13 @@ def test_a_baselines_effort_budget_is_its_measured_mean_square_and_validation_rm
 
 
 def test_training_on_a_baselines_budget_records_it_in_the_summary(tmp_path):
-    config = config_from_mapping(
-        {
-            "env": {"id": "ship_gym/RollOneDOF-v0", "n_envs": 2, "kwargs": KWARGS},
-            "algorithm": {
-                "name": "PPO",
-                "hyperparameters": {"n_steps": 64, "batch_size": 128, "n_epochs": 1},
-                "policy_kwargs": {"net_arch": [16]},
-            },
-            "safe": {"effort_limit": "fins"},
-            "validation": {"every": 128, "episodes": 2, "first_seed": 900},
-            "training": {
-                "total_timesteps": 256,
-                "seed": 3,
-                "output_dir": str(tmp_path / "run"),
-                "progress_bar": False,
-                "tensorboard": False,
-                "torch_threads": 1,
-            },
-        }
+    config = _tiny_config(
+        tmp_path,
+        {"effort_limit": "fins"},
+        n_envs=2,
+        timesteps=256,
+        seed=3,
+        validation={"every": 128, "episodes": 2, "first_seed": 900},
     )
     out = train(config)
     budget = json.loads((out / "summary.json").read_text())["effort_budget"]
