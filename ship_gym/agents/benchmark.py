@@ -169,17 +169,19 @@ def _run_is_complete(run: Path, config: Any) -> bool:
 
 
 def _curve(run: Path) -> dict[str, list[float]]:
-    """The run's learning curve (``progress.csv``) and, when it has one, its deterministic
-    validation curve (``validation.csv``: ``validation_timesteps``, ``validation_return``)."""
+    """The run's learning curve (``progress.csv``: return, cost and the Lagrange multiplier of a
+    ``[safe]`` run) and, when it has one, its deterministic validation curve
+    (``validation.csv``: ``validation_timesteps``, ``validation_return``)."""
     import csv
 
     from ship_gym.agents.validation import VALIDATION_FILE
 
-    curve: dict[str, list[float]] = {"timesteps": [], "mean_return": [], "mean_cost": []}
+    keys = ("timesteps", "mean_return", "mean_cost", "lambda")
+    curve: dict[str, list[float]] = {k: [] for k in keys}
     path = run / "progress.csv"
     if path.is_file():
         rows = list(csv.DictReader(path.open()))
-        curve = {k: [float(r[k]) for r in rows] for k in curve}
+        curve = {k: [float(r.get(k) or 0.0) for r in rows] for k in keys}
     path = run / VALIDATION_FILE
     if path.is_file():
         rows = list(csv.DictReader(path.open()))
@@ -507,7 +509,9 @@ def _plot_curves(name: str, task: BenchmarkTask, curves: dict[str, list[dict]], 
     from ship_gym.io_utils import atomic_write
 
     validated = any("validation_return" in c for runs in curves.values() for c in runs)
-    fig, axes = plt.subplots(1, 2 if validated else 1, figsize=(12.0 if validated else 7.0, 4.2),
+    constrained = any(max(c.get("lambda") or [0.0]) > 0 for runs in curves.values() for c in runs)
+    panels = 1 + validated + constrained
+    fig, axes = plt.subplots(1, panels, figsize=(6.0 * panels if panels > 1 else 7.0, 4.2),
                              squeeze=False)  # fmt: skip
     colours = [plt.get_cmap("tab10")(i) for i in range(10)]
     for c, (config, runs) in enumerate(curves.items()):
@@ -518,6 +522,9 @@ def _plot_curves(name: str, task: BenchmarkTask, curves: dict[str, list[dict]], 
                 axes[0, 1].plot(curve["validation_timesteps"], curve["validation_return"],
                                 color=colours[c % 10], alpha=0.85, lw=1.2, marker=".",
                                 label=config if k == 0 else None)  # fmt: skip
+            if constrained and max(curve.get("lambda") or [0.0]) > 0:
+                axes[0, -1].plot(curve["timesteps"], curve["lambda"], color=colours[c % 10],
+                                 alpha=0.85, lw=1.0, label=config if k == 0 else None)  # fmt: skip
     axes[0, 0].set_ylabel("mean return of the last 100 training episodes [-]")
     axes[0, 0].set_title(f"{name}: stochastic training policy, one line per training seed",
                          fontsize=9)  # fmt: skip
@@ -525,6 +532,10 @@ def _plot_curves(name: str, task: BenchmarkTask, curves: dict[str, list[dict]], 
         axes[0, 1].set_ylabel("mean return on the validation episodes [-]")
         axes[0, 1].set_title("deterministic policy on the validation seeds (model.zip: the best "
                              "point)", fontsize=9)  # fmt: skip
+    if constrained:
+        axes[0, -1].set_ylabel("Lagrange multiplier λ [reward / constraint unit]")
+        axes[0, -1].set_title("[safe] runs: the constraint's price (0: within the budget)",
+                              fontsize=9)  # fmt: skip
     for ax in axes[0]:
         ax.set_xlabel("training time steps [-]")
         ax.grid(alpha=0.3)
