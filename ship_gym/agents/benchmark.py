@@ -445,7 +445,12 @@ def results_markdown(results: dict[str, Any]) -> str:
         "the checkpoint of best deterministic return on its validation seeds (5000–5015 in the "
         "shipped configs), apart "
         'from the held-out ones (`ship_gym.agents.validation`; "model at" in the training-'
-        "steps column).",
+        "steps column). A config with a `[safe]` `effort_limit` trains with its actuator "
+        "effort constrained (PPO-Lagrangian on the mean-square command, "
+        '`ship_gym.agents.lagrangian`; `effort_limit = "fins"` or `"pid"`: the tuned '
+        "baseline's own effort), and its validation keeps the best checkpoint within the "
+        "baseline's effort on the validation episodes; the held-out seas may still ask a few "
+        "per cent more or less of the policy than of the baseline.",
         "",
     ]
     for name, task in results["tasks"].items():

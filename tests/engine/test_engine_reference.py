@@ -8,9 +8,14 @@ at the physics changes of issue #13 (forward-speed Kirchhoff moment, diffraction
 frequency, mirror-symmetric Froude–Krylov triangulation, the asymptotic kernel tail) with the
 same generator (``tests/data/make_simulator_reference.py``, its commit recorded in the file).
 The engine must reproduce them — one ship alone (:func:`build_simulator`) and the same ship
-inside a batch whose other ship sails another sea (:func:`build_batch_simulator`) — to 1e-12 of
-each DOF's range in float64. The Cummins convolution case runs the convolution model itself
-per ship (numpy path): its history sums are ordered differently, 1e-10 (measured 7e-12).
+inside a batch whose other ship sails another sea (:func:`build_batch_simulator`) — to 1e-9 of
+each DOF's range in float64. On the machine that froze them the agreement is 4e-15–3e-13 (the
+Cummins convolution case, whose history sums the numpy path orders differently, 7e-12); on
+another CPU and numpy/numba build (an AMD EPYC, numpy 2.4.6, numba 0.68.1) the cases under an
+autopilot differ by 1e-12–6e-11, round-off grown in the closed loop. 1e-9 is above that and
+still far below any change of the physics a trajectory would show. A DOF the
+case does not excite (sway, roll and yaw in head seas: round-off of 1e-17–1e-15 m or rad) is
+measured against :data:`QUIET_DOF_SCALE` instead of its own range, which is round-off itself.
 """
 
 from __future__ import annotations
@@ -27,7 +32,10 @@ from ship_gym.waves.sea_state import IrregularSea, RegularWave
 
 REFERENCE = np.load(Path(__file__).parents[1] / "data" / "simulator_reference.npz")
 CASES: dict = json.loads(str(REFERENCE["cases"]))
-TOLERANCE = {"convolution_rk4": 1e-10}
+TOLERANCE = 1e-9
+"""Largest difference allowed, as a fraction of each DOF's range [-]."""
+QUIET_DOF_SCALE = 1e-3
+"""Smallest range a DOF is measured against [m or rad]: 1e-9 of it is 1e-12 m or rad."""
 
 
 def _case(name: str):
@@ -46,12 +54,11 @@ def _case(name: str):
 
 
 def _assert_matches(name: str, eta: np.ndarray, nu: np.ndarray) -> None:
-    tol = TOLERANCE.get(name, 1e-12)
     for got, key in ((eta, "eta"), (nu, "nu")):
         ref = REFERENCE[f"{name}/{key}"]
-        scale = np.maximum(np.abs(ref).max(axis=0), 1e-300)
+        scale = np.maximum(np.abs(ref).max(axis=0), QUIET_DOF_SCALE)
         err = (np.abs(got - ref) / scale).max()
-        assert err < tol, f"{name} {key}: {err:.2e} of the DOF range"
+        assert err < TOLERANCE, f"{name} {key}: {err:.2e} of the DOF range"
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
@@ -69,7 +76,8 @@ def test_one_ship_reproduces_the_frozen_trajectory(name):
     for key in REFERENCE.files:
         if key.startswith(f"{name}/angle/"):
             actuator = key.rsplit("/", 1)[1]
-            assert sim.actuator_angle(actuator) == pytest.approx(float(REFERENCE[key]), abs=1e-12)
+            frozen = float(REFERENCE[key])
+            assert sim.actuator_angle(actuator) == pytest.approx(frozen, abs=TOLERANCE)
     # not a trivial agreement: the reference's velocities changed
     assert np.ptp(REFERENCE[f"{name}/nu"][:, 1:], axis=0).max() > 1e-3
 

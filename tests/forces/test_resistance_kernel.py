@@ -317,7 +317,9 @@ def test_kernel_parameters_record(models):
     hm = models["s175", "1984"]
     params = hm.kernel_parameters()
     params[:] = 0.0  # a copy: the model is unaffected
-    assert hm.total_scalar(10.36) == _TOTAL_N["s175", "1984"][10.36]
+    # the frozen value to round-off (1 ulp apart between CPU/numpy builds): zeroing the model's
+    # own parameters would change it entirely
+    assert hm.total_scalar(10.36) == pytest.approx(_TOTAL_N["s175", "1984"][10.36], rel=1e-13)
     np.testing.assert_array_equal(CalmWaterResistance(hm).kernel_parameters(), hm._params)
 
 
