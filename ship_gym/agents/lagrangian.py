@@ -164,12 +164,7 @@ def safe_config(table: Mapping[str, Any]) -> SafeConfig:
     unknown = sorted(set(table) - set(SAFE_KEYS))
     if unknown:
         raise ValueError(f"unknown keys {unknown} in [safe]; expected {sorted(SAFE_KEYS)}")
-    if ("cost_limit" in table) == ("effort_limit" in table):
-        raise ValueError(
-            "[safe] needs exactly one of cost_limit (the episode-cost budget, >= 0) and "
-            "effort_limit (the allowed RMS action, in (0, 1])"
-        )
-    out: dict[str, Any] = {}
+    out: dict[str, Any] = {}  # SafeConfig refuses none or both of cost_limit and effort_limit
     baseline = table.get("effort_limit")
     if isinstance(baseline, str):
         from ship_gym.agents.baselines import BASELINES
@@ -230,7 +225,7 @@ def resolve_effort_budget(
     from dataclasses import replace
 
     from ship_gym.agents.baselines import make_baseline
-    from ship_gym.agents.evaluate import run_episodes
+    from ship_gym.agents.evaluate import run_episodes, summarize
 
     name = safe.effort_baseline
 
@@ -255,7 +250,7 @@ def resolve_effort_budget(
         env_id, baseline, list(validation_seeds), dict(env_kwargs), progress=progress,
         label=f"{name} validation effort",
     )  # fmt: skip
-    return resolved, ("rms_action", float(np.mean(on_validation.rms_action)))
+    return resolved, ("rms_action", float(summarize(on_validation)["rms_action"]))
 
 
 def record_action_effort(venv: Any) -> Any:
