@@ -49,6 +49,7 @@ __all__ = [
     "EpisodeStats",
     "ModelPolicy",
     "Policy",
+    "action_mean_square",
     "evaluate_policies",
     "load_agent_policy",
     "load_policy",
@@ -173,6 +174,13 @@ def _vertical_acceleration_index(names: Sequence[str]) -> int:
     return -1 if i is None else i
 
 
+def action_mean_square(actions: NDArray) -> NDArray:
+    """(N,) mean over the action entries of clip(a, −1, 1)² [-] of (N, n_act) actions: the
+    per-step effort whose RMS over an episode is ``rms_action`` (and which an effort budget of
+    :mod:`ship_gym.agents.lagrangian` constrains in training)."""
+    return np.mean(np.clip(actions, -1.0, 1.0) ** 2, axis=1)
+
+
 def run_episodes(
     env_id: str,
     policy: Policy | Callable[[Any], Policy],
@@ -270,7 +278,7 @@ def run_episodes(
             episode_start = np.zeros(n, dtype=bool)
             returns += np.where(active, reward, 0.0)
             lengths += active
-            act_sq += np.where(active, np.mean(np.clip(action, -1, 1) ** 2, axis=1), 0.0)
+            act_sq += np.where(active, action_mean_square(action), 0.0)
             if "cost" in infos:
                 cost += np.where(active, infos["cost"], 0.0)
             roll.add(infos, obs_before, active)

@@ -262,6 +262,8 @@ def record_action_effort(venv: Any) -> Any:
     """
     from stable_baselines3.common.vec_env import VecEnvWrapper
 
+    from ship_gym.agents.evaluate import action_mean_square
+
     class ActionEffortVecEnv(VecEnvWrapper):
         def __init__(self, inner: Any) -> None:
             super().__init__(inner)
@@ -272,7 +274,7 @@ def record_action_effort(venv: Any) -> Any:
 
         def step_async(self, actions: NDArray) -> None:
             a = np.asarray(actions, dtype=float).reshape(self.num_envs, -1)
-            self._mean_square = np.mean(np.clip(a, -1.0, 1.0) ** 2, axis=1)
+            self._mean_square = action_mean_square(a)
             self.venv.step_async(actions)
 
         def step_wait(self) -> Any:
