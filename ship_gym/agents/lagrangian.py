@@ -37,15 +37,31 @@ Deep Reinforcement Learning", §5; Stooke, Achiam & Abbeel 2020 for the multipli
   (:func:`make_cost_shaped`; the advantage of r − λc is A_r − λA_c, so one critic of the shaped
   reward replaces the separate cost critic of the original — exact for the returns, approximate
   for a learned value function);
-* after every rollout, by projected gradient ascent on the dual (η = ``lagrangian_lr``,
-  :func:`lagrange_multiplier_callback`):
+* after every rollout, λ follows the constraint's violation Δ by a PID controller
+  (:func:`lagrange_multiplier_callback`, :func:`update_multiplier`; Stooke, Achiam & Abbeel
+  2020, "Responsive Safety in Reinforcement Learning by PID Lagrangian Methods", Alg. 2):
 
-  - cost: λ ← clip(λ + η (Ĵ_c − d), 0, λ_max), Ĵ_c the mean cost of the episodes completed
-    since the last update (λ waits while none has);
-  - effort: λ ← clip(λ + η (Ĵ_e / e² − 1), 0, λ_max), Ĵ_e the mean of c_t over the rollout's
-    steps less the exploration noise's share of it (below). The violation is relative, so η
-    means the same for any budget; λ is an extra price of the mean-square action in reward
-    units per step, comparable with the envs' own ``effort_weight``.
+  - the violation: cost, Δ = Ĵ_c − d, Ĵ_c the mean cost of the episodes completed since the
+    last update (λ waits while none has); effort, Δ = Ĵ_e / e² − 1, Ĵ_e the mean of c_t over
+    the rollout's steps less the exploration noise's share of it (below). The effort's
+    violation is relative, so the gains mean the same for any budget; λ is an extra price of
+    the mean-square action in reward units per step, comparable with the envs' own
+    ``effort_weight``;
+  - the integral I ← clip(I + K_i Δ, 0, λ_max), K_i = ``lagrangian_lr`` (I starts at
+    ``lambda_init``): projected gradient ascent on the dual, the classical update;
+  - the smoothed violation Δ̄ ← α Δ̄ + (1 − α) Δ, α = ``lagrangian_smoothing`` (a rollout
+    of 8 × 256 steps of 1000-step episodes sees only 8 seas, so one rollout's Δ is noisy);
+  - λ = clip(I + K_p Δ̄ + K_d max(Δ̄ − Δ̄_prev, 0), 0, λ_max), K_p = ``lagrangian_kp``,
+    K_d = ``lagrangian_kd``.
+
+  With K_p = K_d = 0 (the defaults) this is the integral update alone, λ = I. The integral
+  winds up: a policy that learns the price with a lag overshoots the budget, I grows past
+  its equilibrium while it does, and it comes down only at K_i times the underspend
+  afterwards (the residual CourseKeeping run of seed 1 kept λ ≈ 0.7 while it spent 0.78–0.91
+  of its budget). The proportional term prices an excess at once, so the integral needs less
+  gain and accumulates less; it releases the price as soon as the excess ends. The derivative
+  acts on rising violation only (it damps an overshoot, never pushes λ below the integral's
+  and proportional's price).
 
 The exploration noise. A stochastic policy's applied action is its mean plus noise, so the
 rollout's mean square exceeds the deterministic policy's (the one evaluated and deployed) by the
@@ -60,8 +76,8 @@ then checks the deterministic policy's RMS action against e on its own seeds.
 The callback logs ``safe/lambda`` and ``safe/episode_cost`` with ``safe/cost_limit``, or
 ``safe/effort`` (the estimated deterministic RMS action) with ``safe/effort_limit``, to SB3's
 logger (tensorboard). :func:`ship_gym.agents.train.train` uses both when the config has a
-``[safe]`` table (``cost_limit`` or ``effort_limit``, ``lagrangian_lr``, ``lambda_init``,
-``lambda_max``).
+``[safe]`` table (``cost_limit`` or ``effort_limit``, ``lagrangian_lr``, ``lagrangian_kp``,
+``lagrangian_kd``, ``lagrangian_smoothing``, ``lambda_init``, ``lambda_max``).
 """
 
 from __future__ import annotations
@@ -78,12 +94,14 @@ __all__ = [
     "CALIBRATION_EPISODES",
     "EFFORT_INFO_KEY",
     "SAFE_KEYS",
+    "MultiplierState",
     "SafeConfig",
     "lagrange_multiplier_callback",
     "make_cost_shaped",
     "record_action_effort",
     "resolve_effort_budget",
     "safe_config",
+    "update_multiplier",
 ]
 
 EFFORT_INFO_KEY = "action_mean_square"
@@ -93,7 +111,16 @@ EFFORT_INFO_KEY = "action_mean_square"
 CALIBRATION_EPISODES = 64
 """Episodes of the baseline measuring the training budget of ``effort_limit = "<baseline>"``."""
 
-SAFE_KEYS = ("cost_limit", "effort_limit", "lagrangian_lr", "lambda_init", "lambda_max")
+SAFE_KEYS = (
+    "cost_limit",
+    "effort_limit",
+    "lagrangian_lr",
+    "lagrangian_kp",
+    "lagrangian_kd",
+    "lagrangian_smoothing",
+    "lambda_init",
+    "lambda_max",
+)
 """The keys of a ``[safe]`` table."""
 
 
@@ -112,8 +139,16 @@ class SafeConfig:
         The baseline whose effort is the budget (``effort_limit = "fins"`` in TOML);
         :func:`resolve_effort_budget` then sets ``effort_limit`` from its measured effort.
     lagrangian_lr : float
-        Step η of the multiplier's update [1 / cost unit for a cost budget, - for an effort
-        budget] (> 0).
+        Integral gain K_i of the multiplier's update, its step per rollout and unit violation
+        [reward / cost unit per cost unit for a cost budget; reward per unit relative violation
+        for an effort budget] (> 0).
+    lagrangian_kp : float
+        Proportional gain K_p [units of K_i] (≥ 0; 0: the integral update alone).
+    lagrangian_kd : float
+        Derivative gain K_d on rising violation [units of K_i] (≥ 0).
+    lagrangian_smoothing : float
+        α of the exponential moving average of the violation the P and D terms see [-]
+        (0 ≤ α < 1; 0: this rollout's violation).
     lambda_init : float
         Initial λ [reward / cost unit] (≥ 0).
     lambda_max : float
@@ -124,6 +159,9 @@ class SafeConfig:
     effort_limit: float | None = None
     effort_baseline: str | None = None
     lagrangian_lr: float = 0.05
+    lagrangian_kp: float = 0.0
+    lagrangian_kd: float = 0.0
+    lagrangian_smoothing: float = 0.0
     lambda_init: float = 0.0
     lambda_max: float = 100.0
 
@@ -177,21 +215,28 @@ def safe_config(table: Mapping[str, Any]) -> SafeConfig:
             )
         out["effort_baseline"] = baseline
         table = {k: v for k, v in table.items() if k != "effort_limit"}
-    for key, low, strict, high in (
-        ("cost_limit", 0.0, False, math.inf),
-        ("effort_limit", 0.0, True, 1.0),
-        ("lagrangian_lr", 0.0, True, math.inf),
-        ("lambda_init", 0.0, False, math.inf),
-        ("lambda_max", 0.0, True, math.inf),
+    for key, low, high, open_end in (
+        ("cost_limit", 0.0, math.inf, ""),
+        ("effort_limit", 0.0, 1.0, "low"),
+        ("lagrangian_lr", 0.0, math.inf, "low"),
+        ("lagrangian_kp", 0.0, math.inf, ""),
+        ("lagrangian_kd", 0.0, math.inf, ""),
+        ("lagrangian_smoothing", 0.0, 1.0, "high"),
+        ("lambda_init", 0.0, math.inf, ""),
+        ("lambda_max", 0.0, math.inf, "low"),
     ):
         if key not in table:
             continue
         value = table[key]
         ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
-        if not ok or value < low or (strict and value == low) or value > high:
-            what = "> 0" if strict else ">= 0"
-            if high < math.inf:
-                what += f" and <= {high:g}"
+        if (
+            not ok
+            or (value <= low if open_end == "low" else value < low)
+            or (value >= high if open_end == "high" else value > high)
+        ):
+            what = ("> 0" if open_end == "low" else ">= 0") + (
+                "" if high == math.inf else f" and {'<' if open_end == 'high' else '<='} {high:g}"
+            )
             raise ValueError(f"[safe] {key} = {value!r}; expected a number {what}")
         out[key] = float(value)
     config = SafeConfig(**out)
@@ -362,6 +407,42 @@ def exploration_variance(model: Any) -> float:
     return scale**2 * float(np.mean(variance))
 
 
+@dataclass(frozen=True)
+class MultiplierState:
+    """The PID multiplier's memory between updates (:func:`update_multiplier`).
+
+    Attributes
+    ----------
+    integral : float
+        I, the integral term in multiplier units [reward / cost unit] (0 ≤ I ≤ λ_max).
+    smoothed : float or None
+        Δ̄, the smoothed violation of the last update (None before the first).
+    """
+
+    integral: float
+    smoothed: float | None = None
+
+
+def update_multiplier(
+    config: SafeConfig, state: MultiplierState, violation: float
+) -> tuple[MultiplierState, float]:
+    """One PID update of the multiplier (module docstring): (the new state, λ).
+
+    ``violation`` is this rollout's Δ (Ĵ_c − d for a cost budget [control steps], Ĵ_e / e² − 1
+    for an effort budget [-]).
+    """
+    c = config
+    integral = min(max(state.integral + c.lagrangian_lr * violation, 0.0), c.lambda_max)
+    if state.smoothed is None:
+        smoothed, rise = violation, 0.0
+    else:
+        alpha = c.lagrangian_smoothing
+        smoothed = alpha * state.smoothed + (1.0 - alpha) * violation
+        rise = max(smoothed - state.smoothed, 0.0)
+    lam = integral + c.lagrangian_kp * smoothed + c.lagrangian_kd * rise
+    return MultiplierState(integral, smoothed), float(min(max(lam, 0.0), c.lambda_max))
+
+
 def lagrange_multiplier_callback(config: SafeConfig) -> Any:
     """An SB3 callback updating λ after every rollout (module docstring); built on first use so
     that SB3 is imported only then. ``history`` holds (time steps, λ, Ĵ) per update, Ĵ the mean
@@ -373,6 +454,7 @@ def lagrange_multiplier_callback(config: SafeConfig) -> Any:
             super().__init__()
             self.config = config
             self.history: list[tuple[int, float, float]] = []
+            self.state: MultiplierState | None = None  # I starts at the wrapper's λ
 
         def _on_step(self) -> bool:
             return True
@@ -399,8 +481,9 @@ def lagrange_multiplier_callback(config: SafeConfig) -> Any:
                 violation = mean_square / c.effort_limit**2 - 1.0
                 self.logger.record("safe/effort", measured)
                 self.logger.record("safe/effort_limit", c.effort_limit)
-            lam = shaped.multiplier + c.lagrangian_lr * violation
-            shaped.multiplier = float(min(max(lam, 0.0), c.lambda_max))
+            state = self.state or MultiplierState(integral=shaped.multiplier)
+            self.state, shaped.multiplier = update_multiplier(c, state, violation)
+            self.logger.record("safe/lambda_integral", self.state.integral)
             self.history.append((int(self.num_timesteps), shaped.multiplier, measured))
             self.logger.record("safe/lambda", shaped.multiplier)
 

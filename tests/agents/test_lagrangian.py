@@ -13,6 +13,7 @@ import pytest
 import ship_gym  # noqa: F401
 from ship_gym.agents.lagrangian import (
     EFFORT_INFO_KEY,
+    MultiplierState,
     SafeConfig,
     exploration_variance,
     find_cost_shaped,
@@ -21,6 +22,7 @@ from ship_gym.agents.lagrangian import (
     record_action_effort,
     resolve_effort_budget,
     safe_config,
+    update_multiplier,
 )
 from ship_gym.agents.train import config_from_mapping, train
 from ship_gym.envs.sb3 import make_sb3_vec_env
@@ -146,6 +148,12 @@ def test_multiplier_rises_above_the_budget_falls_below_and_stays_in_bounds():
         ({"effort_limit": "fin"}, r"effort_limit = 'fin'; expected .* name of a baseline"),
         ({"cost_limit": -1}, r"cost_limit = -1; expected a number >= 0"),
         ({"cost_limit": 1, "lagrangian_lr": 0}, r"lagrangian_lr = 0; expected a number > 0"),
+        ({"cost_limit": 1, "lagrangian_kp": -1}, r"lagrangian_kp = -1; expected a number >= 0"),
+        ({"cost_limit": 1, "lagrangian_kd": "x"}, r"lagrangian_kd = 'x'; expected a number"),
+        (
+            {"cost_limit": 1, "lagrangian_smoothing": 1},
+            r"lagrangian_smoothing = 1; expected a number >= 0 and < 1",
+        ),
         ({"cost_limit": 1, "lambda": 1}, r"unknown keys \['lambda'\]"),
         ({"cost_limit": 1, "lambda_init": 5, "lambda_max": 2}, "exceeds lambda_max"),
     ],
@@ -360,3 +368,79 @@ def test_training_on_a_baselines_budget_records_it_in_the_summary(tmp_path):
         "training_rms_action": pytest.approx(expected.effort_limit),
         "validation_rms_action": pytest.approx(limit[1]),
     }
+
+
+def test_pid_multiplier_without_p_and_d_is_the_projected_integral_update():
+    config = SafeConfig(effort_limit=0.2, lagrangian_lr=0.3, lambda_max=2.0)
+    state, lam, integral_only = MultiplierState(integral=0.5), 0.5, 0.5
+    for violation in (1.0, 4.0, -0.2, -3.0, -1.0, 0.7):
+        state, lam = update_multiplier(config, state, violation)
+        integral_only = min(max(integral_only + 0.3 * violation, 0.0), 2.0)
+        assert lam == pytest.approx(integral_only) and state.integral == pytest.approx(lam)
+
+
+def test_pid_multiplier_prices_an_excess_at_once_and_releases_it_when_it_ends():
+    """P adds K_p Δ̄ on top of the integral; D adds K_d × the rise of Δ̄ only; the smoothed
+    violation is the EMA α Δ̄ + (1 − α) Δ; λ stays in [0, λ_max]."""
+    config = SafeConfig(effort_limit=0.2, lagrangian_lr=0.1, lagrangian_kp=2.0,
+                        lagrangian_kd=1.0, lagrangian_smoothing=0.5, lambda_max=3.0)  # fmt: skip
+    state, lam = update_multiplier(config, MultiplierState(integral=0.0), 0.4)
+    assert state.smoothed == pytest.approx(0.4)  # the first violation seeds the average
+    assert lam == pytest.approx(0.04 + 2.0 * 0.4)  # no rise measured yet
+    state, lam = update_multiplier(config, state, 0.8)  # Δ̄ = 0.6, rise 0.2
+    assert (state.integral, state.smoothed) == pytest.approx((0.12, 0.6))
+    assert lam == pytest.approx(0.12 + 2.0 * 0.6 + 1.0 * 0.2)
+    state, lam = update_multiplier(config, state, -1.0)  # Δ̄ = −0.2: falling, no D
+    assert lam == pytest.approx(max(0.02 + 2.0 * -0.2, 0.0)) and lam == 0.0
+    assert state.integral == pytest.approx(0.02)
+    _, lam = update_multiplier(config, MultiplierState(integral=2.9, smoothed=5.0), 5.0)
+    assert lam == 3.0  # clipped at lambda_max
+
+
+def _lagged_plant_run(config, updates=488):
+    """The mean-square ratio m (Ĵ/e²) of a policy that learns its price λ with a lag: it moves
+    1 % per update towards 1.5 / (1 + λ) (1.5 × the budget at λ = 0, on budget at λ = 0.5),
+    starting at 1.5; 488 updates are 1 M steps of 8 × 256-step rollouts. Returns the ratios and
+    multipliers per update."""
+    state, lam, m = MultiplierState(integral=0.0), 0.0, 1.5
+    ratios, lams = [], []
+    for _ in range(updates):
+        state, lam = update_multiplier(config, state, m - 1.0)
+        m += 0.01 * (1.5 / (1.0 + lam) - m)
+        ratios.append(m)
+        lams.append(lam)
+    return np.array(ratios), np.array(lams)
+
+
+def test_pid_multiplier_winds_up_less_than_the_integral_alone_on_a_lagged_learner():
+    """The windup of the shipped runs in miniature: with a slow learner the integral alone
+    (K_i = 0.05) overshoots the equilibrium price λ = 0.5 almost threefold and then holds the
+    policy at ≈ 0.8 of its budget (as RollStabilization seed 1 did: λ 0.9–1.4); K_p = 1 with
+    K_i = 0.02 overshoots far less and leaves a third of the unspent budget. Both end on the
+    budget (the integral's fixed point), so the test compares transients, not end points."""
+    integral = SafeConfig(effort_limit=0.2, lagrangian_lr=0.05)
+    pid = SafeConfig(effort_limit=0.2, lagrangian_lr=0.02, lagrangian_kp=1.0)
+    m_i, lam_i = _lagged_plant_run(integral)
+    m_p, lam_p = _lagged_plant_run(pid)
+    assert abs(m_i[-1] - 1.0) < 0.02 and abs(m_p[-1] - 1.0) < 0.02
+    assert lam_i.max() > 2.0 * 0.5 and m_i.min() < 0.85  # windup, then underspend
+    assert lam_p.max() < 0.6 * lam_i.max() and m_p.min() > 0.95
+    under_i, under_p = np.sum(np.clip(1.0 - m_i, 0, None)), np.sum(np.clip(1.0 - m_p, 0, None))
+    assert under_p < 0.5 * under_i  # the unspent budget (what windup costs the task)
+
+
+def test_the_callback_runs_the_pid_update_from_the_wrappers_initial_multiplier():
+    venv = make_cost_shaped(make_sb3_vec_env("ship_gym/RollOneDOF-v0", 1, seed=0), 0.3,
+                            EFFORT_INFO_KEY)  # fmt: skip
+    config = SafeConfig(effort_limit=0.2, lagrangian_lr=0.1, lagrangian_kp=1.0)
+    cb = lagrange_multiplier_callback(config)
+    model = _Model(venv)
+    cb.init_callback(model)
+    shaped = find_cost_shaped(venv)
+    shaped.step_cost_sum, shaped.step_count = 0.06 * 10, 10  # 1.5 × the budget's mean square
+    cb._on_rollout_end()
+    assert shaped.multiplier == pytest.approx(0.3 + 0.1 * 0.5 + 1.0 * 0.5)
+    assert model.logger.records["safe/lambda_integral"] == pytest.approx(0.35)
+    shaped.step_cost_sum, shaped.step_count = 0.04 * 10, 10  # on budget: P releases its share
+    cb._on_rollout_end()
+    assert shaped.multiplier == pytest.approx(0.35)
