@@ -9,7 +9,10 @@ For each task (:data:`TASKS`) the benchmark
 2. trains the task's shipped configs (:mod:`ship_gym.agents.configs`) with ``n_seeds`` training
    seeds each (``ship-gym train`` runs under ``<out>/runs/<task>/<config>/seed<k>``; a finished
    run of the same config is reused, so an interrupted benchmark resumes) and evaluates every
-   trained policy on the same held-out seeds;
+   trained policy on the same held-out seeds; with ``configs`` only those are trained and
+   evaluated, the task's other configs keep their rows from the earlier ``results.json`` of
+   the same seeds and budget (``ship-gym benchmark --configs``: a config that changed is rerun
+   without retraining the rest);
 3. writes ``<out>/results.md`` (one table per task: task metric, effort = RMS action, capsize
    rate with its Wilson 95 % interval, return, safe-RL cost, wall time and steps/s of the
    training), ``<out>/results.json``, a learning-curve figure per task
@@ -39,7 +42,7 @@ import json
 import math
 import shutil
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -212,11 +215,17 @@ def _row(label: str, metrics: dict, task: BenchmarkTask, training: dict | None) 
 
 
 def check_benchmark_arguments(
-    tasks: Sequence[str], *, n_seeds: int, timesteps: int | None, episodes: int | None, seed: int
+    tasks: Sequence[str],
+    *,
+    n_seeds: int,
+    timesteps: int | None,
+    episodes: int | None,
+    seed: int,
+    configs: Sequence[str] | None = None,
 ) -> None:
     """Refuse bad benchmark arguments before any work (ValueError naming the argument): unknown
-    tasks, non-positive counts, held-out seeds that overlap a training run's seeds or the
-    validation seeds its checkpoint is chosen on."""
+    tasks, configs that belong to none of them, non-positive counts, held-out seeds that overlap
+    a training run's seeds or the validation seeds its checkpoint is chosen on."""
     from ship_gym.agents.train import load_config
 
     unknown = [t for t in tasks if t not in TASKS]
@@ -225,6 +234,14 @@ def check_benchmark_arguments(
             f"tasks: {'unknown task ' + repr(unknown[0]) if unknown else 'none given'}; "
             f"expected some of {sorted(TASKS)}"
         )
+    if configs is not None:
+        offered = [c for t in tasks for c in TASKS[t].configs]
+        stray = [c for c in configs if c not in offered]
+        if stray or not configs:
+            raise ValueError(
+                f"configs: {repr(stray[0]) + ' is no config of ' if stray else 'none given for '}"
+                f"{', '.join(tasks)}; expected some of {offered}"
+            )
     for name, value in (("n_seeds", n_seeds), ("episodes", 1 if episodes is None else episodes)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValueError(f"{name} must be a positive integer, got {value!r}")
@@ -258,6 +275,7 @@ def run_benchmark(
     timesteps: int | None = None,
     episodes: int | None = None,
     seed: int = 10_000,
+    configs: Sequence[str] | None = None,
     progress: bool = True,
     report: Callable[[str], None] = print,
 ) -> dict[str, Any]:
@@ -279,6 +297,11 @@ def run_benchmark(
         :attr:`BenchmarkTask.episodes`).
     seed : int
         First held-out seed.
+    configs : sequence of str, optional
+        Train and evaluate only these of the tasks' configs; the rows and learning curves of
+        a task's other configs are kept from ``results.json`` in ``out_dir``, which must hold
+        that task run with the same held-out seeds, episodes, training seeds and budget (the
+        table says which rows are kept, and from when). None: all configs.
     progress : bool
         Progress bars.
     report : callable
@@ -287,15 +310,15 @@ def run_benchmark(
     Raises
     ------
     ValueError
-        Unknown task, non-positive counts, or held-out seeds that overlap training seeds.
+        Unknown task or config, non-positive counts, held-out seeds that overlap training
+        seeds, or configs to keep without matching earlier results — all before any work.
     """
     from ship_gym.agents.evaluate import evaluate_policies
     from ship_gym.agents.train import load_config, train
 
     check_benchmark_arguments(tasks, n_seeds=n_seeds, timesteps=timesteps, episodes=episodes,
-                              seed=seed)  # fmt: skip
+                              seed=seed, configs=configs)  # fmt: skip
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     results: dict[str, Any] = {"tasks": {}}
     previous = out / "results.json"
     if previous.is_file():  # other tasks' results stay (a task is re-run as a whole)
@@ -303,10 +326,15 @@ def run_benchmark(
             results["tasks"] = dict(json.loads(previous.read_text()).get("tasks", {}))
         except ValueError:
             report(f"{previous}: unreadable, rewritten")
+    kept = _kept_configs(tasks, configs, results["tasks"], previous, n_seeds=n_seeds,
+                         timesteps=timesteps, episodes=episodes, seed=seed)  # fmt: skip
+    out.mkdir(parents=True, exist_ok=True)
     for name in tasks:
         task = TASKS[name]
         budget = timesteps if timesteps is not None else task.timesteps
         n_episodes = episodes if episodes is not None else task.episodes
+        earlier = results["tasks"].get(name, {})
+        kept_from: dict[str, str] = {}
         rows: list[dict] = []
         curves: dict[str, list[dict]] = {}
         base = evaluate_policies(
@@ -320,6 +348,12 @@ def run_benchmark(
             frontier = baseline_frontier(task.env_id, task.frontier, task.metric, held_out,
                                          task.env_kwargs, progress=progress)  # fmt: skip
         for config_name in task.configs:
+            if config_name in kept[name]:
+                report(f"{name}/{config_name}: keeping the rows of the earlier run")
+                rows += [_learned_row(r) for r in earlier["rows"] if r.get("config") == config_name]
+                curves[config_name] = earlier.get("curves", {}).get(config_name, [])
+                kept_from[config_name] = earlier.get("kept", {}).get(config_name, earlier["date"])
+                continue
             curves[config_name] = []
             best: tuple[float, Path] | None = None
             for k in range(n_seeds):
@@ -367,6 +401,7 @@ def run_benchmark(
             n_seeds=n_seeds,
             timesteps=budget,
             date=time.strftime("%Y-%m-%d"),
+            kept=kept_from,
         )
         _plot_curves(name, task, curves, out / f"curves_{name}.png")
         if frontier:
@@ -376,6 +411,60 @@ def run_benchmark(
     atomic_write_text(out / "results.json", json.dumps(results, indent=2, default=float))
     atomic_write_text(out / "results.md", results_markdown(results))
     return results
+
+
+VERDICT_KEYS = ("gain_vs_strongest", "target", "frontier_metric", "gain_at_effort")
+"""The fields of a learned row that :func:`_verdict` derives (recomputed for a kept row)."""
+
+
+def _learned_row(row: Mapping[str, Any]) -> dict[str, Any]:
+    """A learned row of an earlier run as measured, without the verdict derived from it."""
+    return {k: v for k, v in row.items() if k not in VERDICT_KEYS}
+
+
+def _kept_configs(
+    tasks: Sequence[str],
+    configs: Sequence[str] | None,
+    earlier: Mapping[str, Any],
+    previous: Path,
+    *,
+    n_seeds: int,
+    timesteps: int | None,
+    episodes: int | None,
+    seed: int,
+) -> dict[str, tuple[str, ...]]:
+    """Per task, the configs whose rows are kept from the earlier results (none without
+    ``configs``); ValueError where those results are missing or were run otherwise."""
+    kept: dict[str, tuple[str, ...]] = {}
+    for name in tasks:
+        task = TASKS[name]
+        keep = tuple(c for c in task.configs if configs is not None and c not in configs)
+        kept[name] = keep
+        if not keep:
+            continue
+        wanted = {
+            "seed": seed,
+            "episodes": episodes if episodes is not None else task.episodes,
+            "n_seeds": n_seeds,
+            "timesteps": timesteps if timesteps is not None else task.timesteps,
+        }
+        found = earlier.get(name)
+        if found is None:
+            differs = "no results of the task"
+        else:
+            changed = [f"{k} {found.get(k)!r} (now {v!r})" for k, v in wanted.items()
+                       if found.get(k) != v]  # fmt: skip
+            differs = ", ".join(changed)
+        rows = found["rows"] if found is not None else []
+        missing = [c for c in keep if not any(r.get("config") == c for r in rows)]
+        if differs or missing:
+            why = differs or f"no rows of {', '.join(missing)}"
+            raise ValueError(
+                f"configs {list(configs or [])}: keeping {', '.join(keep)} of {name} needs its "
+                f"earlier run in {previous} with the same held-out seeds, episodes, training "
+                f"seeds and budget; found {why}. Expected all of {name}'s configs, or that run"
+            )
+    return kept
 
 
 def _ship_policy(run: Path, to: Path) -> None:
@@ -442,8 +531,8 @@ def results_markdown(results: dict[str, Any]) -> str:
         "`scripts/tune_capsize_master.py` (`capsize_master.json`). A `ppo_residual_*` config "
         "learns a correction of its task's tuned baseline, a = clip(a_baseline + scale · "
         "a_learned) (`ship_gym.agents.residual`). A config with a `[validation]` table keeps "
-        "the checkpoint of best deterministic return on its validation seeds (5000–5015 in the "
-        "shipped configs), apart "
+        "the checkpoint of best deterministic return on its validation seeds (from 5000 in "
+        "the shipped configs), apart "
         'from the held-out ones (`ship_gym.agents.validation`; "model at" in the training-'
         "steps column). A config with a `[safe]` `effort_limit` trains with its actuator "
         "effort constrained (PPO-Lagrangian on the mean-square command, "
@@ -460,7 +549,9 @@ def results_markdown(results: dict[str, Any]) -> str:
             f"## {name} (`{task['env_id']}`)",
             "",
             f"Held-out seeds {first} … {first + task['episodes'] - 1}; training seeds 0 … "
-            f"{task['n_seeds'] - 1}, budget {budget}; run {task['date']}. Task metric: "
+            f"{task['n_seeds'] - 1}, budget {budget}; run {task['date']}"
+            + "".join(f", {c} kept from the run of {d}" for c, d in task.get("kept", {}).items())
+            + ". Task metric: "
             f"{task['metric_label']} (lower is better); strongest baseline: "
             f"{task['strongest_baseline']}.",
             "",

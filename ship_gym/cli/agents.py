@@ -112,6 +112,12 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         "CapsizeAvoidance)",
     )
     p.add_argument("--seed", type=seed, default=10_000, help="first held-out seed")
+    p.add_argument(
+        "--configs",
+        default=None,
+        help="comma-separated shipped configs to train and evaluate; the tasks' other configs "
+        "keep their rows from the earlier results.json in --out (default: all)",
+    )
     p.add_argument("--out", default="docs/benchmarks", help="output folder")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     p.set_defaults(func=_cmd_benchmark)
@@ -127,15 +133,19 @@ def _cmd_benchmark(args: argparse.Namespace) -> int:
             f"--tasks {args.tasks!r}: {'unknown ' + repr(unknown[0]) if unknown else 'empty'}; "
             f"expected comma-separated names of {', '.join(TASKS)}"
         )
+    configs = None
+    if args.configs is not None:
+        configs = [c.strip() for c in args.configs.split(",") if c.strip()]
     try:
         check_benchmark_arguments(
             tasks, n_seeds=args.seeds, timesteps=args.timesteps, episodes=args.episodes,
-            seed=args.seed,
+            seed=args.seed, configs=configs,
         )  # fmt: skip
     except ValueError as exc:
-        raise CLIError(
-            f"--seed {args.seed}: {exc}" if "held-out" in str(exc) else str(exc)
-        ) from None
+        text = str(exc)
+        if text.startswith("configs:"):
+            raise CLIError(f"--configs {args.configs!r}:{text.removeprefix('configs:')}") from None
+        raise CLIError(f"--seed {args.seed}: {text}" if "held-out" in text else text) from None
     prepare_output_dir(args.out, "--out")
     try:
         run_benchmark(
@@ -145,6 +155,7 @@ def _cmd_benchmark(args: argparse.Namespace) -> int:
             timesteps=args.timesteps,
             episodes=args.episodes,
             seed=args.seed,
+            configs=configs,
             progress=not args.no_progress,
         )
     except ValueError as exc:

@@ -29,10 +29,10 @@ MAX_EPISODE_STEPS = max_episode_steps("RideControl")
 """Time limit in control steps, from the registration (250 s at the default control_dt)."""
 
 FOIL_LIMIT_DEG = 15.0
+"""T-foil angle limit of the servo [deg] (:data:`ship_gym.control.actuators.FOIL_SERVO`)."""
 S175_PASSENGER_POINT_M = (50.0, 0.0, -10.0)
 """Default passenger position on the S175 [m] (forward, on the centreline, above the deck); on
 another ship scaled by :func:`~ship_gym.envs.env_task.point_scaled_from_s175`."""
-"""T-foil angle limit of the servo [deg] (:data:`ship_gym.control.actuators.FOIL_SERVO`)."""
 
 
 class RideControlTask(ComfortShipTask):

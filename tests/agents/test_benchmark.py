@@ -99,6 +99,54 @@ def test_only_a_run_of_the_same_config_and_budget_is_reused(tiny):
     assert not _run_is_complete(out / "runs" / "missing", config())
 
 
+def test_configs_reruns_some_and_keeps_the_other_configs_rows(tiny, monkeypatch):
+    """A task of two configs, the second with rows from an earlier run: ``configs`` retrains
+    (here reuses) the first and keeps the second's rows and curves as measured, with its date;
+    the verdict is derived afresh; earlier results of other seeds or budgets are refused."""
+    import copy
+    import dataclasses
+
+    out, results, _ = tiny
+    saved = (out / "results.json").read_text()
+    task = dataclasses.replace(TASKS["RollOneDOF"],
+                               configs=("ppo_roll_one_dof", "ppo_roll_stabilization"))  # fmt: skip
+    monkeypatch.setitem(TASKS, "RollOneDOF", task)
+    earlier = copy.deepcopy(results)
+    entry = earlier["tasks"]["RollOneDOF"]
+    planted = dict(entry["rows"][-1], policy="ppo_roll_stabilization seed 0",
+                   config="ppo_roll_stabilization", training_seed=0, metric=0.0,
+                   target="stale")  # fmt: skip
+    entry["rows"].append(planted)
+    entry["curves"]["ppo_roll_stabilization"] = [{"timesteps": [1, 2], "mean_return": [3, 4]}]
+    entry["date"] = "2026-01-02"
+    (out / "results.json").write_text(json.dumps(earlier))
+    try:
+        with pytest.raises(ValueError, match=r"keeping ppo_roll_stabilization of RollOneDOF "
+                           r"needs .* found episodes 3 \(now 4\)"):  # fmt: skip
+            run_benchmark(["RollOneDOF"], out, n_seeds=2, timesteps=512, episodes=4,
+                          configs=["ppo_roll_one_dof"], progress=False)  # fmt: skip
+        assert json.loads((out / "results.json").read_text()) == earlier  # refused before work
+        messages: list[str] = []
+        rerun = run_benchmark(["RollOneDOF"], out, n_seeds=2, timesteps=512, episodes=3,
+                              configs=["ppo_roll_one_dof"], progress=False,
+                              report=messages.append)  # fmt: skip
+        assert sum("reusing the finished run" in m for m in messages) == 2
+        assert any("ppo_roll_stabilization: keeping" in m for m in messages)
+        again = rerun["tasks"]["RollOneDOF"]
+        kept = [r for r in again["rows"] if r.get("config") == "ppo_roll_stabilization"]
+        assert len(kept) == 1 and kept[0]["metric"] == 0.0 and kept[0]["target"] is False
+        assert again["curves"]["ppo_roll_stabilization"] == [
+            {"timesteps": [1, 2], "mean_return": [3, 4]}
+        ]
+        assert again["kept"] == {"ppo_roll_stabilization": "2026-01-02"}
+        assert [r["policy"] for r in again["rows"]][:4] == [r["policy"] for r in results[
+            "tasks"]["RollOneDOF"]["rows"]]  # fmt: skip
+        text = (out / "results.md").read_text()
+        assert "ppo_roll_stabilization kept from the run of 2026-01-02" in text
+    finally:
+        (out / "results.json").write_text(saved)
+
+
 def test_bad_arguments_are_refused(tmp_path):
     with pytest.raises(ValueError, match="unknown task 'Sailing'"):
         run_benchmark(["Sailing"], tmp_path)

@@ -358,6 +358,11 @@ CASES: list[tuple[str, int, list[str]]] = [
     ("benchmark --seeds 0", U, ["--seeds", "0"]),
     ("benchmark --tasks RollOneDOF --seed 5", R, ["--seed 5", "overlaps the training seeds"]),
     ("benchmark --out {file}", R, ["--out"]),
+    (
+        "benchmark --tasks RollOneDOF --configs sac_ride_control",
+        R,
+        ["--configs 'sac_ride_control'", "is no config of RollOneDOF", "ppo_roll_one_dof"],
+    ),
     ("evaluate", U, ["--env", "required"]),
     ("evaluate --env bogus", R, ["--env", "bogus", "registered id"]),
     ("evaluate --env ship_gym/Bogus-v0", R, ["--env", "Bogus", "registered id"]),
