@@ -29,6 +29,23 @@ The problem: maximise the expected return J_r(π) subject to one constraint J(π
   held at the baseline's effort on one set of episodes may exceed it by a few per cent on
   another.
 
+Which mean of the effort (``effort_measure``). The default, ``"mean_square"``, constrains the
+mean square over all steps, so heavy seas weigh most; the benchmark compares the *mean over
+episodes of each episode's RMS action* (:func:`ship_gym.agents.evaluate.summarize`), which weighs
+every sea alike. The two rank controllers differently when they spend differently across seas,
+and the seas differ much: on RollStabilization-v2 the fins' per-episode mean square has a
+coefficient of variation of 1.2 over 512 episodes. A policy held to the fins' mean square spent
+17–52 % more than the fins in the calmer half of the 40 held-out seas and 1–8 % less in the
+heavier half: 0.97–1.06× their pooled RMS but 1.02–1.16× their mean RMS, the benchmark's
+column. ``effort_measure = "episode_rms"`` constrains that column instead: J_e(π) =
+E_episodes[RMS_ep], with the per-step cost c_t = a_t² / max(ρ_t, ρ_min), ρ_t the episode's
+running RMS action up to step t (:func:`record_action_effort`), whose episode mean is
+MS_ep / RMS_ep = RMS_ep when ρ_t has settled — a step of calm seas is priced higher per unit a²
+than one of heavy seas, as the episode's RMS is. ρ_min = e / 2 bounds the price early in an
+episode and in the calmest seas. The budget of a baseline is then its mean episode RMS on the
+calibration episodes, and the multiplier's violation is (Ĵ_e / e)² − 1 (relative in mean-square
+units, as for the default measure).
+
 Its Lagrangian relaxation, max_π min_{λ≥0} J_r − λ (J − d), is solved by the two-time-scale
 scheme of the Safety Gym baselines (Ray, Achiam & Amodei 2019, "Benchmarking Safe Exploration in
 Deep Reinforcement Learning", §5; Stooke, Achiam & Abbeel 2020 for the multiplier update):
@@ -93,6 +110,8 @@ from numpy.typing import NDArray
 __all__ = [
     "CALIBRATION_EPISODES",
     "EFFORT_INFO_KEY",
+    "EFFORT_MEASURES",
+    "EPISODE_RMS_INFO_KEY",
     "SAFE_KEYS",
     "MultiplierState",
     "SafeConfig",
@@ -108,12 +127,20 @@ EFFORT_INFO_KEY = "action_mean_square"
 """Step-info key of the applied action's mean square over its entries [-]
 (:func:`record_action_effort`)."""
 
+EPISODE_RMS_INFO_KEY = "action_rms_share"
+"""Step-info key of the step's share of its episode's RMS action, a² / max(ρ_t, ρ_min) [-]
+(``effort_measure = "episode_rms"``, :func:`record_action_effort`)."""
+
+EFFORT_MEASURES = ("mean_square", "episode_rms")
+"""The means of the effort a budget can constrain (module docstring)."""
+
 CALIBRATION_EPISODES = 64
 """Episodes of the baseline measuring the training budget of ``effort_limit = "<baseline>"``."""
 
 SAFE_KEYS = (
     "cost_limit",
     "effort_limit",
+    "effort_measure",
     "lagrangian_lr",
     "lagrangian_kp",
     "lagrangian_kd",
@@ -138,6 +165,9 @@ class SafeConfig:
     effort_baseline : str or None
         The baseline whose effort is the budget (``effort_limit = "fins"`` in TOML);
         :func:`resolve_effort_budget` then sets ``effort_limit`` from its measured effort.
+    effort_measure : {"mean_square", "episode_rms"}
+        The mean of the effort constrained (module docstring): e² bounds the mean square over
+        all steps, or e the mean over episodes of the episode's RMS action.
     lagrangian_lr : float
         Integral gain K_i of the multiplier's update, its step per rollout and unit violation
         [reward / cost unit per cost unit for a cost budget; reward per unit relative violation
@@ -158,6 +188,7 @@ class SafeConfig:
     cost_limit: float | None = None
     effort_limit: float | None = None
     effort_baseline: str | None = None
+    effort_measure: str = "mean_square"
     lagrangian_lr: float = 0.05
     lagrangian_kp: float = 0.0
     lagrangian_kd: float = 0.0
@@ -174,6 +205,13 @@ class SafeConfig:
                 f"= {self.cost_limit!r}, effort_limit = "
                 f"{self.effort_baseline or self.effort_limit!r}"
             )
+        if self.effort_measure not in EFFORT_MEASURES or (
+            self.cost_limit is not None and self.effort_measure != "mean_square"
+        ):
+            raise ValueError(
+                f"[safe] effort_measure = {self.effort_measure!r}; expected one of "
+                f"{list(EFFORT_MEASURES)}, with effort_limit"
+            )
 
     @property
     def constraint(self) -> str:
@@ -183,7 +221,18 @@ class SafeConfig:
     @property
     def info_key(self) -> str:
         """The step-info key of the constrained per-step quantity c_t."""
-        return "cost" if self.cost_limit is not None else EFFORT_INFO_KEY
+        if self.cost_limit is not None:
+            return "cost"
+        return EPISODE_RMS_INFO_KEY if self.effort_measure == "episode_rms" else EFFORT_INFO_KEY
+
+    @property
+    def rms_floor(self) -> float | None:
+        """ρ_min of ``effort_measure = "episode_rms"`` [-] (e / 2; None for other budgets)."""
+        if self.effort_measure != "episode_rms":
+            return None
+        if self.effort_limit is None:
+            raise ValueError(f"the effort budget of {self.effort_baseline!r} is not measured yet")
+        return 0.5 * self.effort_limit
 
     @property
     def validation_limit(self) -> tuple[str, float]:
@@ -215,6 +264,9 @@ def safe_config(table: Mapping[str, Any]) -> SafeConfig:
             )
         out["effort_baseline"] = baseline
         table = {k: v for k, v in table.items() if k != "effort_limit"}
+    if "effort_measure" in table:
+        out["effort_measure"] = table["effort_measure"]  # SafeConfig checks it
+        table = {k: v for k, v in table.items() if k != "effort_measure"}
     for key, low, high, open_end in (
         ("cost_limit", 0.0, math.inf, ""),
         ("effort_limit", 0.0, 1.0, "low"),
@@ -262,7 +314,8 @@ def resolve_effort_budget(
 
     For ``effort_limit = "<baseline>"`` the baseline (per-env default gains) runs on one episode
     per training seed: e = √(mean square action over all their steps), the quantity the
-    multiplier constrains; with validation it also runs on the validation seeds, whose limit is
+    multiplier constrains (with ``effort_measure = "episode_rms"`` its mean episode RMS
+    action); with validation it also runs on the validation seeds, whose limit is
     its mean RMS action there (the column the validation compares). Other budgets pass through.
     """
     if safe.effort_baseline is None or safe.effort_limit is not None:
@@ -281,8 +334,11 @@ def resolve_effort_budget(
         env_id, baseline, list(training_seeds), dict(env_kwargs), progress=progress,
         label=f"{name} effort budget",
     )  # fmt: skip
-    weights = calibration.lengths / np.sum(calibration.lengths)
-    effort = float(np.sqrt(np.sum(weights * calibration.rms_action**2)))
+    if safe.effort_measure == "episode_rms":
+        effort = float(summarize(calibration)["rms_action"])
+    else:
+        weights = calibration.lengths / np.sum(calibration.lengths)
+        effort = float(np.sqrt(np.sum(weights * calibration.rms_action**2)))
     if not effort > 0.0:
         raise ValueError(
             f"[safe] effort_limit = {name!r}: the baseline used no effort on {env_id} "
@@ -298,9 +354,11 @@ def resolve_effort_budget(
     return resolved, ("rms_action", float(summarize(on_validation)["rms_action"]))
 
 
-def record_action_effort(venv: Any) -> Any:
+def record_action_effort(venv: Any, rms_floor: float | None = None) -> Any:
     """``venv`` (an SB3 VecEnv) whose step infos carry :data:`EFFORT_INFO_KEY`: the mean over
-    the action entries of clip(a, −1, 1)², a the action the wrapped env receives.
+    the action entries of clip(a, −1, 1)², a the action the wrapped env receives; with
+    ``rms_floor`` = ρ_min [-] also :data:`EPISODE_RMS_INFO_KEY`, a² / max(ρ_t, ρ_min), ρ_t the
+    RMS of a over the episode's steps so far, this one included (module docstring).
 
     Placed below a residual wrapper it sees the total command (baseline plus correction), the
     action whose effort the benchmark measures (:func:`ship_gym.agents.evaluate.run_episodes`).
@@ -313,8 +371,12 @@ def record_action_effort(venv: Any) -> Any:
         def __init__(self, inner: Any) -> None:
             super().__init__(inner)
             self._mean_square: NDArray = np.zeros(inner.num_envs)
+            self._episode_sum = np.zeros(inner.num_envs)  # Σ a² of each running episode
+            self._episode_steps = np.zeros(inner.num_envs)
 
         def reset(self) -> Any:
+            self._episode_sum[:] = 0.0
+            self._episode_steps[:] = 0.0
             return self.venv.reset()
 
         def step_async(self, actions: NDArray) -> None:
@@ -324,8 +386,17 @@ def record_action_effort(venv: Any) -> Any:
 
         def step_wait(self) -> Any:
             obs, reward, done, infos = self.venv.step_wait()
-            for info, value in zip(infos, self._mean_square, strict=True):
-                info[EFFORT_INFO_KEY] = float(value)
+            self._episode_sum += self._mean_square
+            self._episode_steps += 1.0
+            running = np.sqrt(self._episode_sum / self._episode_steps)
+            for i, info in enumerate(infos):
+                info[EFFORT_INFO_KEY] = float(self._mean_square[i])
+                if rms_floor is not None:
+                    share = self._mean_square[i] / max(float(running[i]), rms_floor)
+                    info[EPISODE_RMS_INFO_KEY] = float(share)
+            ended = np.asarray(done, dtype=bool)  # the next step starts a new episode
+            self._episode_sum[ended] = 0.0
+            self._episode_steps[ended] = 0.0
             return obs, reward, done, infos
 
     return ActionEffortVecEnv(venv)
@@ -476,9 +547,13 @@ def lagrange_multiplier_callback(config: SafeConfig) -> Any:
                 assert c.effort_limit is not None
                 if count == 0:
                     return
-                mean_square = max(total / count - exploration_variance(self.model), 0.0)
-                measured = math.sqrt(mean_square)
-                violation = mean_square / c.effort_limit**2 - 1.0
+                noise = exploration_variance(self.model)
+                if c.effort_measure == "episode_rms":  # Σ a²/ρ: the noise's share is ≈ σ²/ρ
+                    share = total / count
+                    measured = max(share - noise / share, 0.0) if share > 0.0 else 0.0
+                else:
+                    measured = math.sqrt(max(total / count - noise, 0.0))
+                violation = (measured / c.effort_limit) ** 2 - 1.0
                 self.logger.record("safe/effort", measured)
                 self.logger.record("safe/effort_limit", c.effort_limit)
             state = self.state or MultiplierState(integral=shaped.multiplier)

@@ -256,7 +256,7 @@ def make_training_env(config: TrainConfig) -> Any:
     if config.safe is not None and config.safe.constraint == "effort":
         from ship_gym.agents.lagrangian import record_action_effort
 
-        venv = record_action_effort(venv)
+        venv = record_action_effort(venv, config.safe.rms_floor)
     if config.residual is not None:
         from ship_gym.agents.residual import residual_vec_env
 

@@ -13,6 +13,7 @@ import pytest
 import ship_gym  # noqa: F401
 from ship_gym.agents.lagrangian import (
     EFFORT_INFO_KEY,
+    EPISODE_RMS_INFO_KEY,
     MultiplierState,
     SafeConfig,
     exploration_variance,
@@ -274,14 +275,15 @@ def test_exploration_variance_is_the_gaussian_policys_scaled_noise():
     assert exploration_variance(_Model(venv)) == 0.0
 
 
-def test_training_with_a_tight_effort_budget_raises_lambda(tmp_path):
+@pytest.mark.parametrize("measure", ["mean_square", "episode_rms"])
+def test_training_with_a_tight_effort_budget_raises_lambda(tmp_path, measure):
     """A residual on the fin controller with a budget of 0.05 RMS, far below the fins' own
     effort in this strong forcing: λ grows every rollout (the recorder charges the total
     command, not the small learned correction), and the validation keeps the checkpoint within
-    the budget or, when none is, the one of least effort."""
+    the budget or, when none is, the one of least effort — for either mean of the effort."""
     config = _tiny_config(
         tmp_path,
-        {"effort_limit": 0.05, "lagrangian_lr": 0.01},
+        {"effort_limit": 0.05, "lagrangian_lr": 0.01, "effort_measure": measure},
         n_envs=2,
         n_steps=128,
         timesteps=2560,  # the curve starts at the first episode's end (1000)
@@ -444,3 +446,89 @@ def test_the_callback_runs_the_pid_update_from_the_wrappers_initial_multiplier()
     shaped.step_cost_sum, shaped.step_count = 0.04 * 10, 10  # on budget: P releases its share
     cb._on_rollout_end()
     assert shaped.multiplier == pytest.approx(0.35)
+
+
+class _FiveStepEnv:
+    """A minimal Gymnasium env: any action, episodes of 5 steps (for the effort recorder)."""
+
+    def __new__(cls):
+        import gymnasium as gym
+
+        class Env(gym.Env):
+            observation_space = gym.spaces.Box(-1.0, 1.0, (1,))
+            action_space = gym.spaces.Box(-1.0, 1.0, (2,))
+
+            def reset(self, *, seed=None, options=None):
+                super().reset(seed=seed)
+                self.t = 0
+                return np.zeros(1, dtype=np.float32), {}
+
+            def step(self, action):
+                self.t += 1
+                return np.zeros(1, dtype=np.float32), 0.0, False, self.t == 5, {}
+
+        return Env()
+
+
+def test_the_episode_rms_share_is_a_squared_over_the_running_rms_and_restarts_per_episode():
+    """c_t = mean(a²) / max(ρ_t, ρ_min), ρ_t the RMS over the episode's steps so far (this one
+    included); the running sums restart after the step that ends an episode; actions clip to
+    ±1 first, as the env applies them."""
+    from stable_baselines3.common.vec_env import DummyVecEnv
+
+    venv = record_action_effort(DummyVecEnv([_FiveStepEnv, _FiveStepEnv]), rms_floor=0.1)
+    venv.reset()
+    rng = np.random.default_rng(3)
+    sums, steps = np.zeros(2), np.zeros(2)
+    for _ in range(12):  # two episodes and a part of a third
+        actions = rng.uniform(-1.5, 1.5, (2, 2)) * rng.choice([0.01, 1.0], (2, 1))
+        ms = np.mean(np.clip(actions, -1, 1) ** 2, axis=1)
+        _, _, dones, infos = venv.step(actions)
+        sums, steps = sums + ms, steps + 1
+        expected = ms / np.maximum(np.sqrt(sums / steps), 0.1)
+        np.testing.assert_allclose([i[EPISODE_RMS_INFO_KEY] for i in infos], expected, rtol=1e-12)
+        np.testing.assert_allclose([i[EFFORT_INFO_KEY] for i in infos], ms, rtol=1e-12)
+        sums[dones], steps[dones] = 0.0, 0.0
+    plain = record_action_effort(DummyVecEnv([_FiveStepEnv]))
+    plain.reset()
+    _, _, _, infos = plain.step(np.zeros((1, 2)))
+    assert EPISODE_RMS_INFO_KEY not in infos[0]  # only with a floor
+
+
+def test_an_episode_rms_budget_is_the_baselines_mean_rms_and_prices_its_share():
+    from ship_gym.agents.baselines import make_baseline
+    from ship_gym.agents.evaluate import run_episodes, summarize
+
+    env_id = "ship_gym/RollOneDOF-v0"
+    safe = safe_config({"effort_limit": "fins", "effort_measure": "episode_rms"})
+    assert safe.info_key == EPISODE_RMS_INFO_KEY
+    with pytest.raises(ValueError, match="not measured yet"):
+        _ = safe.rms_floor
+    resolved, _ = resolve_effort_budget(safe, env_id, KWARGS, [7, 8, 9], None)
+    fins = summarize(run_episodes(env_id, lambda e: make_baseline("fins", e), [7, 8, 9], KWARGS))
+    assert resolved.effort_limit == pytest.approx(fins["rms_action"], rel=1e-12)
+    assert resolved.rms_floor == pytest.approx(0.5 * resolved.effort_limit)
+    assert safe_config({"effort_limit": 0.3}).rms_floor is None  # the default measure
+    # the multiplier sees (mean share / e)² − 1: here 1.5 × the budget's RMS, K_i = 0.1
+    venv = make_cost_shaped(make_sb3_vec_env(env_id, 1, seed=0), 0.0, EPISODE_RMS_INFO_KEY)
+    cb = lagrange_multiplier_callback(SafeConfig(effort_limit=0.2, effort_measure="episode_rms",
+                                                 lagrangian_lr=0.1))  # fmt: skip
+    model = _Model(venv)
+    cb.init_callback(model)
+    shaped = find_cost_shaped(venv)
+    shaped.step_cost_sum, shaped.step_count = 0.3 * 10, 10
+    cb._on_rollout_end()
+    assert model.logger.records["safe/effort"] == pytest.approx(0.3)
+    assert shaped.multiplier == pytest.approx(0.1 * (1.5**2 - 1.0))
+
+
+@pytest.mark.parametrize(
+    ("table", "message"),
+    [
+        ({"effort_limit": 0.2, "effort_measure": "rms"}, r"effort_measure = 'rms'; expected one"),
+        ({"cost_limit": 1, "effort_measure": "episode_rms"}, r"effort_measure = 'episode_rms'"),
+    ],
+)
+def test_bad_effort_measures_are_refused(table, message):
+    with pytest.raises(ValueError, match=message):
+        safe_config(table)
