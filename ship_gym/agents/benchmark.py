@@ -535,11 +535,12 @@ def results_markdown(results: dict[str, Any]) -> str:
         "the shipped configs), apart "
         'from the held-out ones (`ship_gym.agents.validation`; "model at" in the training-'
         "steps column). A config with a `[safe]` `effort_limit` trains with its actuator "
-        "effort constrained (PPO-Lagrangian on the mean-square command, "
-        '`ship_gym.agents.lagrangian`; `effort_limit = "fins"` or `"pid"`: the tuned '
-        "baseline's own effort), and its validation keeps the best checkpoint within the "
-        "baseline's effort on the validation episodes; the held-out seas may still ask a few "
-        "per cent more or less of the policy than of the baseline.",
+        "effort constrained (PPO-Lagrangian, `ship_gym.agents.lagrangian`; "
+        '`effort_limit = "fins"` or `"pid"`: the tuned baseline\'s own effort; with '
+        '`effort_measure = "episode_rms"` on the mean episode RMS action, this table\'s '
+        "effort column, else on the mean square over all steps), and its validation keeps the "
+        "best checkpoint within the baseline's effort on the validation episodes; the held-out "
+        "seas may still ask a few per cent more or less of the policy than of the baseline.",
         "",
     ]
     for name, task in results["tasks"].items():

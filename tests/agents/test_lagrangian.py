@@ -495,7 +495,7 @@ def test_the_episode_rms_share_is_a_squared_over_the_running_rms_and_restarts_pe
     assert EPISODE_RMS_INFO_KEY not in infos[0]  # only with a floor
 
 
-def test_an_episode_rms_budget_is_the_baselines_mean_rms_and_prices_its_share():
+def test_an_episode_rms_budget_is_the_baselines_mean_rms_and_prices_its_share(monkeypatch):
     from ship_gym.agents.baselines import make_baseline
     from ship_gym.agents.evaluate import run_episodes, summarize
 
@@ -520,6 +520,13 @@ def test_an_episode_rms_budget_is_the_baselines_mean_rms_and_prices_its_share():
     cb._on_rollout_end()
     assert model.logger.records["safe/effort"] == pytest.approx(0.3)
     assert shaped.multiplier == pytest.approx(0.1 * (1.5**2 - 1.0))
+    # with exploration noise of variance v the mean share is the noisy RMS √(ρ² + v)
+    import ship_gym.agents.lagrangian as lagrangian
+
+    monkeypatch.setattr(lagrangian, "exploration_variance", lambda model: 0.05)
+    shaped.step_cost_sum, shaped.step_count = 0.3 * 10, 10
+    cb._on_rollout_end()
+    assert model.logger.records["safe/effort"] == pytest.approx(np.sqrt(0.3**2 - 0.05))
 
 
 @pytest.mark.parametrize(
