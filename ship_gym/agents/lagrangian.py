@@ -273,15 +273,15 @@ def safe_config(table: Mapping[str, Any]) -> SafeConfig:
     if "effort_measure" in table:
         out["effort_measure"] = table["effort_measure"]  # SafeConfig checks it
         table = {k: v for k, v in table.items() if k != "effort_measure"}
-    for key, low, high, open_end in (
-        ("cost_limit", 0.0, math.inf, ""),
-        ("effort_limit", 0.0, 1.0, "low"),
-        ("lagrangian_lr", 0.0, math.inf, "low"),
-        ("lagrangian_kp", 0.0, math.inf, ""),
-        ("lagrangian_kd", 0.0, math.inf, ""),
-        ("lagrangian_smoothing", 0.0, 1.0, "high"),
-        ("lambda_init", 0.0, math.inf, ""),
-        ("lambda_max", 0.0, math.inf, "low"),
+    for key, low, low_allowed, high, high_allowed in (
+        ("cost_limit", 0.0, True, math.inf, True),
+        ("effort_limit", 0.0, False, 1.0, True),
+        ("lagrangian_lr", 0.0, False, math.inf, True),
+        ("lagrangian_kp", 0.0, True, math.inf, True),
+        ("lagrangian_kd", 0.0, True, math.inf, True),
+        ("lagrangian_smoothing", 0.0, True, 1.0, False),
+        ("lambda_init", 0.0, True, math.inf, True),
+        ("lambda_max", 0.0, False, math.inf, True),
     ):
         if key not in table:
             continue
@@ -289,12 +289,14 @@ def safe_config(table: Mapping[str, Any]) -> SafeConfig:
         ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
         if (
             not ok
-            or (value <= low if open_end == "low" else value < low)
-            or (value >= high if open_end == "high" else value > high)
+            or value < low
+            or (value == low and not low_allowed)
+            or value > high
+            or (value == high and not high_allowed)
         ):
-            what = ("> 0" if open_end == "low" else ">= 0") + (
-                "" if high == math.inf else f" and {'<' if open_end == 'high' else '<='} {high:g}"
-            )
+            what = f"{'>=' if low_allowed else '>'} {low:g}"
+            if high < math.inf:
+                what += f" and {'<=' if high_allowed else '<'} {high:g}"
             raise ValueError(f"[safe] {key} = {value!r}; expected a number {what}")
         out[key] = float(value)
     config = SafeConfig(**out)
@@ -392,17 +394,18 @@ def record_action_effort(venv: Any, rms_floor: float | None = None) -> Any:
 
         def step_wait(self) -> Any:
             obs, reward, done, infos = self.venv.step_wait()
-            self._episode_sum += self._mean_square
-            self._episode_steps += 1.0
-            running = np.sqrt(self._episode_sum / self._episode_steps)
-            for i, info in enumerate(infos):
-                info[EFFORT_INFO_KEY] = float(self._mean_square[i])
-                if rms_floor is not None:
-                    share = self._mean_square[i] / max(float(running[i]), rms_floor)
+            for info, value in zip(infos, self._mean_square, strict=True):
+                info[EFFORT_INFO_KEY] = float(value)
+            if rms_floor is not None:  # the episode-RMS share (only its budget needs it)
+                self._episode_sum += self._mean_square
+                self._episode_steps += 1.0
+                running = np.sqrt(self._episode_sum / self._episode_steps)
+                shares = self._mean_square / np.maximum(running, rms_floor)
+                for info, share in zip(infos, shares, strict=True):
                     info[EPISODE_RMS_INFO_KEY] = float(share)
-            ended = np.asarray(done, dtype=bool)  # the next step starts a new episode
-            self._episode_sum[ended] = 0.0
-            self._episode_steps[ended] = 0.0
+                ended = np.asarray(done, dtype=bool)  # the next step starts a new episode
+                self._episode_sum[ended] = 0.0
+                self._episode_steps[ended] = 0.0
             return obs, reward, done, infos
 
     return ActionEffortVecEnv(venv)

@@ -7,6 +7,7 @@ import csv
 import itertools
 import json
 
+import gymnasium as gym
 import numpy as np
 import pytest
 
@@ -312,8 +313,6 @@ def test_a_baselines_effort_budget_is_its_measured_mean_square_and_validation_rm
     """``effort_limit = "fins"``: e = √(mean of a² over every step of the fins' episodes on the
     training seeds), summed here by stepping the env by hand; the validation's limit is the
     fins' mean RMS action over the validation episodes (the column it compares)."""
-    import gymnasium as gym
-
     from ship_gym.agents.baselines import make_baseline
     from ship_gym.agents.evaluate import run_episodes, summarize
 
@@ -448,26 +447,20 @@ def test_the_callback_runs_the_pid_update_from_the_wrappers_initial_multiplier()
     assert shaped.multiplier == pytest.approx(0.35)
 
 
-class _FiveStepEnv:
+class _FiveStepEnv(gym.Env):
     """A minimal Gymnasium env: any action, episodes of 5 steps (for the effort recorder)."""
 
-    def __new__(cls):
-        import gymnasium as gym
+    observation_space = gym.spaces.Box(-1.0, 1.0, (1,))
+    action_space = gym.spaces.Box(-1.0, 1.0, (2,))
 
-        class Env(gym.Env):
-            observation_space = gym.spaces.Box(-1.0, 1.0, (1,))
-            action_space = gym.spaces.Box(-1.0, 1.0, (2,))
+    def reset(self, *, seed=None, options=None):
+        super().reset(seed=seed)
+        self.t = 0
+        return np.zeros(1, dtype=np.float32), {}
 
-            def reset(self, *, seed=None, options=None):
-                super().reset(seed=seed)
-                self.t = 0
-                return np.zeros(1, dtype=np.float32), {}
-
-            def step(self, action):
-                self.t += 1
-                return np.zeros(1, dtype=np.float32), 0.0, False, self.t == 5, {}
-
-        return Env()
+    def step(self, action):
+        self.t += 1
+        return np.zeros(1, dtype=np.float32), 0.0, False, self.t == 5, {}
 
 
 def test_the_episode_rms_share_is_a_squared_over_the_running_rms_and_restarts_per_episode():
