@@ -83,6 +83,14 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--no-viscous", action="store_true")
     p.add_argument("--bilge-keels", action="store_true")
     p.add_argument("--hold", default="", help="comma-separated DOFs to hold, e.g. surge,sway,yaw")
+    p.add_argument(
+        "--steering",
+        default="autopilot",
+        choices=["autopilot", "none"],
+        help="at speed with yaw free: the PID autopilot holds the initial heading with the rudder "
+        "(propeller and hull manoeuvring forces on; default), or no rudder (hull manoeuvring "
+        "forces only: the waves turn the ship)",
+    )
     p.add_argument("--output", default="out/simulation.nc", help=".nc (NetCDF) or .csv")
     p.add_argument("--plot", default="out/simulation.png", help="motion plot; '' to skip")
     p.set_defaults(func=_cmd_simulate)
@@ -108,6 +116,9 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         raise CLIError("--output: expected a .nc or .csv file path, got ''")
     plot = prepare_output(args.plot, "--plot", suffixes=(".png", ".pdf", ".svg"))
     free = tuple(i not in held for i in range(6))
+    # at speed a free yaw needs the hull's lift (manoeuvring forces) and, to keep a course, a
+    # rudder: the autopilot by default (ship_gym.hydro.forward_speed, "Two planes")
+    steered = args.speed > 0.0 and free[5] and args.steering == "autopilot"
     setup = ShipSetup(
         hull=args.hull,
         database=args.database,
@@ -120,6 +131,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         dt=args.dt,
         free_dofs=free,
         fk_method="fast32" if args.precision == "float32" else "fast",
+        propulsion=steered,
+        rudder="autopilot" if steered else "none",
     )
     sea: RegularWave | IrregularSea | None
     if args.regular is not None:
@@ -143,6 +156,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         f"real time, {engine}); max |roll| {np.degrees(np.abs(result.eta[:, 3]).max()):.2f} deg, "
         f"max |pitch| {np.degrees(np.abs(result.eta[:, 4]).max()):.2f} deg"
     )
+    if args.speed > 0.0 and free[5]:
+        heading = np.degrees(result.eta[:, 5] - eta0[5])
+        steering = "autopilot" if steered else "no rudder (hull manoeuvring forces only)"
+        print(
+            f"steering: {steering}; heading change {heading[-1]:+.1f} deg at the end, max "
+            f"{np.abs(heading).max():.1f} deg; speed {result.nu[-1, 0]:.2f} m/s at the end"
+        )
     ds = result.to_dataset()
     ds.attrs.update({k: str(v) for k, v in vars(args).items() if k != "func"})
     if out.suffix.lower() == ".csv":

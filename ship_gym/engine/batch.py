@@ -85,6 +85,7 @@ from ship_gym.forces.base import (
     ForceModel,
 )
 from ship_gym.forces.diffraction import (
+    CACHE_COLUMNS,
     Diffraction,
     diffraction_force,
     refresh_diffraction_cache,
@@ -105,7 +106,7 @@ from ship_gym.forces.radiation import (
 from ship_gym.forces.viscous import ViscousRollDamping
 from ship_gym.hull import equilibrium
 from ship_gym.hull.hull import Hull
-from ship_gym.hydro.forward_speed import SpeedTerms, check_speed_terms
+from ship_gym.hydro.forward_speed import SpeedTerms, check_speed_cutoff, check_speed_terms
 from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.typing import IntegratorName
 from ship_gym.waves.wave_field import WaveField, stack_fields
@@ -297,7 +298,7 @@ def _csr(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
 @nb.njit(cache=True)
 def _state_space_rows(
     v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
-    p_inf, p_mem, force, zdot,
+    p_inf, p_mem, cutoff, force, zdot,
 ):  # fmt: skip  # pragma: no cover - compiled
     """:func:`ship_gym.forces.radiation.state_space_radiation` per row (force zeroed first)."""
     for s in range(z.shape[0]):
@@ -305,7 +306,7 @@ def _state_space_rows(
             force[s, o] = 0.0
         state_space_radiation(
             v[s], z[s], speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val,
-            d_mat, has_d, p_inf, p_mem, force[s], zdot[s],
+            d_mat, has_d, p_inf, p_mem, cutoff, force[s], zdot[s],
         )  # fmt: skip
 
 
@@ -333,6 +334,7 @@ class BatchStateSpaceRadiation(BatchForceModel):
         speed_terms: SpeedTerms = "all",
         *,
         momentum: tuple[NDArray, NDArray] | None = None,
+        speed_cutoff: float = 0.0,
     ) -> None:
         a, b, c, d = (np.asarray(x, float) for x in (a, b, c, d))
         n = a.shape[0]
@@ -342,13 +344,17 @@ class BatchStateSpaceRadiation(BatchForceModel):
                 "expected (n, n), (n, 6), (6, n), (6, 6)"
             )
         self.speed_terms: SpeedTerms = check_speed_terms(speed_terms)
+        self.speed_cutoff = check_speed_cutoff(speed_cutoff)
+        """ω_c [rad/s] of the Kirchhoff moment's high-pass (0: none; else two more states)."""
+        n_filter = 2 if self.speed_cutoff > 0.0 else 0
         rows: tuple[NDArray, NDArray] = (
             speed_momentum_rows(a_inf, a, b, c, speed_terms) if momentum is None else momentum
         )
         self.momentum_added_mass, self.momentum_memory = rows
         """(2, 6) and (2, n): the pitch and yaw rows of Lᵀ A(∞) and Lᵀ C A⁻¹
         (:mod:`ship_gym.hydro.forward_speed` eq. 2)."""
-        self._surge_steady = -np.linalg.solve(a, b[:, SURGE]) if n else np.zeros(0)
+        surge = -np.linalg.solve(a, b[:, SURGE]) if n else np.zeros(0)
+        self._surge_steady = np.concatenate([surge, np.zeros(n_filter)])
         """z per m/s of a steady surge perturbation, −A⁻¹ B e₁ (:meth:`steady_surge_states`)."""
         self.matrices = (a, b, c)
         """The dense A (n, n), B (n, 6), C (6, n) of the fit."""
@@ -359,7 +365,7 @@ class BatchStateSpaceRadiation(BatchForceModel):
         self._c = _csr(c)
         self._d = np.ascontiguousarray(d)
         self._has_d = bool(np.any(d != 0.0))
-        self.n_states = int(n)
+        self.n_states = int(n) + n_filter
         self.added_mass = np.asarray(a_inf, float)
 
     def steady_surge_states(self, surge_offset: NDArray) -> NDArray:
@@ -382,6 +388,7 @@ class BatchStateSpaceRadiation(BatchForceModel):
         return cls(
             ss.A, ss.B, ss.C, ss.D, model.A_inf, model.speed_terms,
             momentum=(model.momentum_added_mass, model.momentum_memory),
+            speed_cutoff=model.speed_cutoff,
         )  # fmt: skip
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
@@ -389,8 +396,8 @@ class BatchStateSpaceRadiation(BatchForceModel):
         zdot = np.empty((ctx.n, self.n_states))
         _state_space_rows(
             ctx.nu, np.ascontiguousarray(states), ctx.forward_speed, *self._a, *self._b,
-            *self._c, self._d, self._has_d, self.momentum_added_mass, self.momentum_memory, force,
-            zdot,
+            *self._c, self._d, self._has_d, self.momentum_added_mass, self.momentum_memory,
+            self.speed_cutoff, force, zdot,
         )  # fmt: skip
         return force, zdot
 
@@ -418,25 +425,26 @@ class BatchConstantRadiation(BatchForceModel):
 
 
 @nb.njit(cache=True)
-def _stale_headings(ships, psi, psi_ref, u_ref, speed, tol, out):  # pragma: no cover
-    """The single-ship cache rule per row: no cache, another speed, or |Δψ| > tol (wrapped)."""
+def _stale_headings(ships, psi, u, psi_ref, u_ref, tol, speed_tol, out):  # pragma: no cover
+    """The single-ship cache rule per row: no cache, |Δu| > speed_tol or |Δψ| > tol (wrapped)."""
     for r in range(ships.shape[0]):
         s = ships[r]
         ref = psi_ref[s]
-        if np.isnan(ref) or u_ref[s] != speed:
+        if np.isnan(ref) or abs(u[r] - u_ref[s]) > speed_tol:
             out[r] = True
         else:
             out[r] = abs(wrap_angle_scalar(psi[r] - ref)) > tol
 
 
 @nb.njit(cache=True)
-def _diffraction_rows(ships, psi, local, xd, dxd, psi_ref, out):  # pragma: no cover - compiled
-    """:func:`ship_gym.forces.diffraction.diffraction_force` per row (X_D cached per ship)."""
+def _diffraction_rows(ships, psi, u, local, xd, dxd, dxu, ref, out):  # pragma: no cover
+    """:func:`ship_gym.forces.diffraction.diffraction_force` per row (X_D cached per ship;
+    ``u`` the rows' surge velocities [m/s]; ``ref`` (N, 2) the caches' heading and speed)."""
     for r in range(ships.shape[0]):
         s = ships[r]
         for o in range(6):
             out[r, o] = 0.0
-        diffraction_force(psi[r], local[r], xd[s], dxd[s], psi_ref[s : s + 1], out[r])
+        diffraction_force(psi[r], u[r], local[r], xd[s], dxd[s], dxu[s], ref[s], out[r])
 
 
 class BatchDiffraction(BatchForceModel):
@@ -462,6 +470,8 @@ class BatchDiffraction(BatchForceModel):
         self.template = template
         self.tolerance = template.heading_tolerance
         """Heading change [rad] beyond which a ship's cache is refreshed."""
+        self.speed_tolerance = template.speed_tolerance
+        """Surge-velocity change [m/s] beyond which a ship's cache is refreshed."""
         self.encounter = template.frequency == "encounter"
         """Whether X_D is looked up at the encounter frequency."""
         table, beta = template.interpolation_table()
@@ -473,61 +483,75 @@ class BatchDiffraction(BatchForceModel):
         """The bilinear look-up's table X_D (n_ω, n_β + 2, 6), its headings and frequencies:
         the arguments of :func:`~ship_gym.forces.diffraction.refresh_diffraction_cache`, shared
         by this model's numpy path and the compiled backend."""
+        grid, mass = template.complex_mass
+        self.speed_correction: tuple[NDArray, NDArray, NDArray] = (
+            np.ascontiguousarray(template.kirchhoff, dtype=float),
+            np.ascontiguousarray(grid, dtype=float),
+            np.ascontiguousarray(mass, dtype=np.complex128),
+        )
+        """The speed correction's parameters and complex-mass table
+        (:func:`ship_gym.forces.diffraction.kirchhoff_parameters`,
+        :attr:`ship_gym.forces.diffraction.Diffraction.complex_mass`)."""
         self.bind(1, 1)
 
     def bind(self, n_ships: int, n_comp: int) -> None:
-        self._psi_ref = np.full(n_ships, np.nan)
-        self._u_ref = np.full(n_ships, np.nan)
-        self._xd = np.zeros((n_ships, n_comp, 6), dtype=complex)
-        self._dxd = np.zeros((n_ships, n_comp, 6), dtype=complex)
+        self._ref = np.full((n_ships, 2), np.nan)
+        self._xd = np.zeros((n_ships, n_comp, CACHE_COLUMNS), dtype=complex)
+        self._dxd = np.zeros((n_ships, n_comp, CACHE_COLUMNS), dtype=complex)
+        self._dxu = np.zeros((n_ships, n_comp, CACHE_COLUMNS), dtype=complex)
 
     @property
     def caches(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-        """The per-ship caches (X_D (N, n_c, 6), ∂X_D/∂ψ, reference heading (N,) [rad] and speed
-        (N,) [m/s]): the arrays themselves, shared with the compiled backend."""
-        return self._xd, self._dxd, self._psi_ref, self._u_ref
+        """The per-ship caches (X_D with the moment factors (N, n_c, 8), their ∂/∂ψ and ∂/∂U,
+        and the reference heading [rad] and surge velocity [m/s] (N, 2)): the arrays
+        themselves, shared with the compiled backend."""
+        return self._xd, self._dxd, self._dxu, self._ref
 
     def reset(self, ships: NDArray[np.int64], ctx: BatchContext) -> None:
-        self._psi_ref[ships] = np.nan
-        self._u_ref[ships] = np.nan
+        self._ref[ships] = np.nan
 
-    def _refresh(self, ships: NDArray[np.int64], psi: NDArray, ctx: BatchContext, rows) -> None:
+    def _refresh(
+        self, ships: NDArray[np.int64], psi: NDArray, u: NDArray, ctx: BatchContext, rows
+    ) -> None:
         # the compiled backend's own refresh (one implementation of the look-up: a ship's cache
         # is bit-identical whichever path filled it, so a reset and replay reproduces a run)
         w = ctx.waves
-        speed = float(ctx.forward_speed)
         must_raise = self.template.above_range == "raise"
-        work = np.zeros((3, w.direction.shape[1], 6), np.complex128)
+        work = np.zeros((5, w.direction.shape[1], CACHE_COLUMNS), np.complex128)
         count = np.zeros(1, np.int64)
-        ref = np.empty(2)
-        for ship, row, heading in zip(ships, rows, psi, strict=True):
+        for ship, row, heading, speed in zip(ships, rows, psi, u, strict=True):
             args = (
                 *self.lookup, np.ascontiguousarray(w.direction[row], dtype=float),
                 np.ascontiguousarray(w.omega[row], dtype=float),
                 np.ascontiguousarray(w.wavenumber[row], dtype=float), self.encounter,
-                float(self.template.heading_step), must_raise, work, count,
+                *self.speed_correction, float(self.template.heading_step),
+                float(self.template.speed_step), must_raise, work, count,
             )  # fmt: skip
-            if not refresh_diffraction_cache(float(heading), speed, args, self._xd[ship],
-                                             self._dxd[ship], ref):  # fmt: skip
+            if not refresh_diffraction_cache(
+                float(heading), float(speed), args, self._xd[ship], self._dxd[ship],
+                self._dxu[ship], self._ref[ship],
+            ):  # fmt: skip
                 # a component above ω_max with above_range="raise": the model's own error
                 self.template.heading_expansion(
-                    w.direction[row], w.omega[row], w.wavenumber[row], float(heading), speed
-                )
+                    w.direction[row], w.omega[row], w.wavenumber[row], float(heading),
+                    float(speed),
+                )  # fmt: skip
                 raise AssertionError("the diffraction model accepted what its kernel refused")
-            self._psi_ref[ship], self._u_ref[ship] = ref[0], ref[1]
 
     def evaluate(self, ctx: BatchContext, states: NDArray) -> tuple[NDArray, NDArray]:
         psi = np.ascontiguousarray(ctx.eta[:, 5])
+        u = np.ascontiguousarray(ctx.nu[:, SURGE])
         stale = np.empty(ctx.n, dtype=np.bool_)
         _stale_headings(
-            ctx.ships, psi, self._psi_ref, self._u_ref, ctx.forward_speed, self.tolerance, stale
-        )
+            ctx.ships, psi, u, self._ref[:, 0], self._ref[:, 1], self.tolerance,
+            self.speed_tolerance, stale,
+        )  # fmt: skip
         if stale.any():
             rows = np.flatnonzero(stale)
-            self._refresh(ctx.ships[rows], psi[rows], ctx, rows)
+            self._refresh(ctx.ships[rows], psi[rows], u[rows], ctx, rows)
         force = np.empty((ctx.n, 6))
         _diffraction_rows(
-            ctx.ships, psi, ctx.local_phasor, self._xd, self._dxd, self._psi_ref, force
+            ctx.ships, psi, u, ctx.local_phasor, self._xd, self._dxd, self._dxu, self._ref, force
         )
         return force, _no_states(ctx.n)
 

@@ -56,7 +56,11 @@ from ship_gym.engine.batch_control import (
     BatchResistance,
 )
 from ship_gym.engine.rigid_body import healthy_state, rigid_body_terms
-from ship_gym.forces.diffraction import diffraction_force, refresh_diffraction_cache
+from ship_gym.forces.diffraction import (
+    CACHE_COLUMNS,
+    diffraction_force,
+    refresh_diffraction_cache,
+)
 from ship_gym.forces.froude_krylov import _fk_core, _fk_core_f32
 from ship_gym.forces.lifting_surface import surface_group_force
 from ship_gym.forces.manoeuvring import manoeuvring_force
@@ -139,6 +143,7 @@ class RadiationRecord(NamedTuple):
     has_d: bool
     p_inf: NDArray
     p_mem: NDArray
+    cutoff: float
 
 
 class DiffractionRecord(NamedTuple):
@@ -152,12 +157,17 @@ class DiffractionRecord(NamedTuple):
     omega: NDArray
     wavenumber: NDArray
     encounter: bool
+    kirchhoff: NDArray
+    mass_grid: NDArray
+    complex_mass: NDArray
     step: float
+    speed_step: float
     tolerance: float
+    speed_tolerance: float
     xd: NDArray
     dxd: NDArray
-    psi_ref: NDArray
-    u_ref: NDArray
+    dxu: NDArray
+    ref: NDArray
     work: NDArray
     refresh_count: NDArray
 
@@ -318,19 +328,19 @@ def _evaluate(
     """ν̇, ż and η̇ of ship s at (t, q, v, z); the actuators' targets are held."""
     if diff.enabled:
         psi = q[5]
-        ref = diff.psi_ref[s]
-        stale = np.isnan(ref) or diff.u_ref[s] != rad.speed
+        ref = diff.ref[s, 0]
+        stale = np.isnan(ref) or abs(v[0] - diff.ref[s, 1]) > diff.speed_tolerance
         stale = stale or abs(wrap_angle_scalar(psi - ref)) > diff.tolerance
         if stale:
             dtab = (
                 diff.table, diff.beta_ext, diff.omega_db, diff.direction[s], diff.omega[s],
-                diff.wavenumber[s], diff.encounter, diff.step, False, diff.work[s],
+                diff.wavenumber[s], diff.encounter, diff.kirchhoff, diff.mass_grid,
+                diff.complex_mass, diff.step, diff.speed_step, False, diff.work[s],
                 diff.refresh_count[s : s + 1],
             )  # fmt: skip
-            ref2 = np.empty(2)
-            refresh_diffraction_cache(psi, rad.speed, dtab, diff.xd[s], diff.dxd[s], ref2)
-            diff.psi_ref[s] = ref2[0]
-            diff.u_ref[s] = ref2[1]
+            refresh_diffraction_cache(
+                psi, v[0], dtab, diff.xd[s], diff.dxd[s], diff.dxu[s], diff.ref[s]
+            )
     rot = np.empty((3, 3))
     total = np.empty(6)
     rigid_body_terms(
@@ -359,10 +369,13 @@ def _evaluate(
         total[3 + i] += rot[0, i] * fe[3] + rot[1, i] * fe[4] + rot[2, i] * fe[5]
     state_space_radiation(
         v, z, rad.speed, rad.a_ptr, rad.a_idx, rad.a_val, rad.b_ptr, rad.b_idx, rad.b_val,
-        rad.c_ptr, rad.c_idx, rad.c_val, rad.d_mat, rad.has_d, rad.p_inf, rad.p_mem, total, zdot,
+        rad.c_ptr, rad.c_idx, rad.c_val, rad.d_mat, rad.has_d, rad.p_inf, rad.p_mem, rad.cutoff,
+        total, zdot,
     )  # fmt: skip
     if diff.enabled:
-        diffraction_force(q[5], local, diff.xd[s], diff.dxd[s], diff.psi_ref[s : s + 1], total)
+        diffraction_force(
+            q[5], v[0], local, diff.xd[s], diff.dxd[s], diff.dxu[s], diff.ref[s], total
+        )
     p_roll = v[3]
     total[3] += -(prop.viscous_b1 * p_roll + prop.viscous_b2 * abs(p_roll) * p_roll)
     # control forces, in the order of the batch models (resistance, propeller, hull, surfaces)
@@ -627,30 +640,41 @@ class CompiledBackend:
             a, b, c = rad_model.matrices
             d = rad_model.feedthrough
             p_inf, p_mem = rad_model.momentum_added_mass, rad_model.momentum_memory
+            cutoff = rad_model.speed_cutoff
         else:  # constant coefficients (Matusiak 2a/2b): no forward-speed momentum terms
             a, b, c = np.zeros((0, 0)), np.zeros((0, 6)), np.zeros((6, 0))
             d = np.zeros((6, 6)) if rad_model is None else rad_model.damping
             p_inf, p_mem = np.zeros((2, 6)), np.zeros((2, 0))
+            cutoff = 0.0
         self.radiation = RadiationRecord(
             sim.forward_speed, *_csr(a), *_csr(b), *_csr(c), _c(d), bool(np.any(d != 0.0)),
-            _c(p_inf), _c(p_mem),
+            _c(p_inf), _c(p_mem), float(cutoff),
         )  # fmt: skip
         diff = next((f for f in sim.forces if isinstance(f, BatchDiffraction)), None)
         n_c = sim.n_components
         if diff is not None:
             tab = diff.lookup
-            enc, h, tol = diff.encounter, diff.template.heading_step, diff.tolerance
-            xd, dxd, psi_ref, u_ref = diff.caches
+            enc, tol, speed_tol = diff.encounter, diff.tolerance, diff.speed_tolerance
+            h, hu = diff.template.heading_step, diff.template.speed_step
+            correction = diff.speed_correction
+            xd, dxd, dxu, ref = diff.caches
         else:
             tab = (np.zeros((2, 2, 6), np.complex128), np.arange(2.0), np.arange(1.0, 3.0))
-            enc, h, tol = False, 1e-4, 0.0
-            xd = np.zeros((n, n_c, 6), np.complex128)
-            dxd, psi_ref, u_ref = xd.copy(), np.full(n, np.nan), np.full(n, np.nan)
+            enc, h, hu, tol, speed_tol = False, 1e-4, 0.01, 0.0, 0.0
+            correction = (np.zeros(4), np.arange(2.0), np.ones((2, 2), np.complex128))
+            xd = np.zeros((n, n_c, CACHE_COLUMNS), np.complex128)
+            dxd, dxu, ref = xd.copy(), xd.copy(), np.full((n, 2), np.nan)
         self._diff_static = (diff is not None, *tab)
-        self._diff_rest = (enc, float(h), float(tol), xd, dxd, psi_ref, u_ref)
+        self._diff_rest = (
+            enc, *correction, float(h), float(hu), float(tol), float(speed_tol), xd, dxd, dxu,
+            ref,
+        )  # fmt: skip
         # work arrays and refresh counters per ship: ships refresh concurrently in the
         # parallel loop
-        self._diff_work = (np.zeros((n, 3, n_c, 6), np.complex128), np.zeros(n, np.int64))
+        self._diff_work = (
+            np.zeros((n, 5, n_c, CACHE_COLUMNS), np.complex128),
+            np.zeros(n, np.int64),
+        )
         visc = next((f for f in sim.forces if isinstance(f, BatchViscousRoll)), None)
         res = next((f for f in sim.forces if isinstance(f, BatchResistance)), None)
         pro = next((f for f in sim.forces if isinstance(f, BatchPropeller)), None)
@@ -986,23 +1010,23 @@ def _loop_fk(
 @nb.njit(cache=True)
 def _loop_radiation(
     n, v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
-    p_inf, p_mem,
+    p_inf, p_mem, cutoff,
 ):  # fmt: skip  # pragma: no cover - compiled
     total = np.zeros(6)
     zdot = np.empty(z.shape[0])
     for _ in range(n):
         state_space_radiation(
             v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat,
-            has_d, p_inf, p_mem, total, zdot,
+            has_d, p_inf, p_mem, cutoff, total, zdot,
         )  # fmt: skip
     return total
 
 
 @nb.njit(cache=True)
-def _loop_diffraction(n, psi, local, xd, dxd, diff_ref):  # pragma: no cover - compiled
+def _loop_diffraction(n, psi, u, local, xd, dxd, dxu, diff_ref):  # pragma: no cover
     total = np.zeros(6)
     for _ in range(n):
-        diffraction_force(psi, local, xd, dxd, diff_ref, total)
+        diffraction_force(psi, u, local, xd, dxd, dxu, diff_ref, total)
     return total
 
 
@@ -1167,7 +1191,7 @@ class CompiledShip:
         hull = (h.body, h.tri, h.tri_last, h.tri_first, h.spread, h.weights, h.areas, h.rho_g)
         r = b.radiation
         rad = tuple(r)
-        psi_ref = diff.psi_ref[0:1] if diff.enabled else np.array([q[5]])
+        diff_ref = diff.ref[0] if diff.enabled else np.array([q[5], v[0]])
         p = b.propulsion
         jobs = {
             "froude_krylov_hydrostatic": lambda n: _loop_fk(
@@ -1180,7 +1204,7 @@ class CompiledShip:
             ),
             "radiation": lambda n: _loop_radiation(n, v, self.z.copy(), *rad),
             "diffraction": lambda n: _loop_diffraction(
-                n, q[5], local, diff.xd[0], diff.dxd[0], psi_ref
+                n, q[5], v[0], local, diff.xd[0], diff.dxd[0], diff.dxu[0], diff_ref
             ),
             "rigid_body_viscous_roll": lambda n: _loop_rigid(
                 n, q, v, mass, weight, cog, held, p.viscous_b1, p.viscous_b2

@@ -53,7 +53,12 @@ from ship_gym.forces.viscous import BilgeKeel, ViscousRollDamping
 from ship_gym.hull import equilibrium, hydrostatics
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
-from ship_gym.hydro.forward_speed import SpeedTerms
+from ship_gym.hydro.forward_speed import (
+    SpeedTerms,
+    check_speed_cutoff,
+    check_speed_terms,
+    default_speed_cutoff,
+)
 from ship_gym.hydro.rao import natural_frequency
 from ship_gym.kinematics import encounter_frequency
 from ship_gym.ship import Ship, check_database_matches, load_ship
@@ -109,8 +114,12 @@ class ShipSetup:
         DOFs integrated (held DOFs keep their initial velocity).
     propulsion : bool
         Resistance + propeller (surge balance; default shaft speed: self-propulsion at ``speed``).
-    manoeuvring : bool
-        Hull manoeuvring forces in sway/yaw (needed for steering).
+    manoeuvring : bool or None
+        Hull manoeuvring forces in sway/yaw (needed for steering). ``None`` (default): on when
+        the ship has forward speed and sway or yaw is free — the hull's lift is the physics
+        that holds a ship at speed on its course (without it the sway–yaw couplings of the
+        radiation turn the S175 by 20° in 600 s at 5 m/s and 200° at 10 m/s from a 1° drift);
+        off otherwise. The resolved value is stored.
     rudder : {"none", "command", "autopilot"}
         No rudder, a rudder following ``"rudder_command"``, or the heading autopilot.
     fins : {"none", "command", "controller"}
@@ -122,6 +131,24 @@ class ShipSetup:
         Froude–Krylov force on the moving hull already produces the motion-induced part, so
         ``"reflection"`` (short-wave reflection only) is the consistent choice with it;
         ``"total"`` double-counts the motion part and is there for comparisons.
+    speed_terms : {"vertical", "all", "none"}
+        Planes of the forward-speed Kirchhoff moment on the radiated and scattered momentum
+        (:mod:`ship_gym.hydro.forward_speed`). ``"vertical"`` (default): the heave–pitch
+        terms; the horizontal plane's steady Munk moment belongs to the hull's lift — inside
+        the manoeuvring derivatives when ``manoeuvring=True``, absent without them, where
+        ``"all"`` would turn a ship at speed away from its course (1° of yaw → 112° in 100 s at
+        5 m/s on the S175). ``"all"`` is the full linear theory (for comparisons with strip
+        theory with sway and yaw held), ``"none"`` the body-axis zero-speed model.
+    speed_cutoff : float or None
+        ω_c [rad/s] of the Kirchhoff moment's high-pass (:mod:`ship_gym.hydro.forward_speed`
+        eq. 5): the steady and slowly varying momentum is the steady flow's. ``None``
+        (default): 0.25 √(g/L) of the ship (0.059 rad/s for the S175); 0: none.
+    diffraction_speed_terms : bool
+        The diffraction force at speed in relative-motion form with the scattered flow's
+        Kirchhoff moment (:mod:`ship_gym.hydro.forward_speed` eq. 4 and 6; default). False: the
+        zero-speed force at the wave frequency without it — the model of issue #13, whose
+        radiated momentum alone pitches a ship at speed in beam and quartering seas; kept for
+        the ``-v2`` environments and comparisons.
     """
 
     hull: str = "s175"
@@ -137,13 +164,25 @@ class ShipSetup:
     fk_method: Literal["fast", "fast32", "reference"] = "fast"
     free_dofs: tuple[bool, ...] = (True, True, True, True, True, True)
     propulsion: bool = False
-    manoeuvring: bool = False
+    manoeuvring: bool | None = None
     rudder: Literal["none", "command", "autopilot"] = "none"
     fins: Literal["none", "command", "controller"] = "none"
     t_foil: Literal["none", "command", "controller"] = "none"
     added_resistance: Literal["none", "reflection", "total"] = "none"
+    speed_terms: SpeedTerms = "vertical"
+    speed_cutoff: float | None = None
+    diffraction_speed_terms: bool = True
 
     def __post_init__(self) -> None:
+        if self.manoeuvring is None:
+            horizontal_free = len(self.free_dofs) == 6 and bool(
+                self.free_dofs[1] or self.free_dofs[5]
+            )
+            auto = bool(np.isfinite(self.speed) and self.speed > 0.0 and horizontal_free)
+            object.__setattr__(self, "manoeuvring", auto)
+        check_speed_terms(self.speed_terms)
+        if self.speed_cutoff is not None:
+            check_speed_cutoff(self.speed_cutoff, "speed_cutoff")
         for name, allowed in (
             ("added_resistance", ("none", "reflection", "total")),
             ("rudder", ("none", "command", "autopilot")),
@@ -295,6 +334,14 @@ def roll_natural_frequency(hull: Hull, database: xr.Dataset) -> float:
     )
 
 
+def speed_cutoff_of(setup: ShipSetup, hull: Hull) -> float:
+    """The setup's ω_c [rad/s]: ``speed_cutoff``, or
+    :func:`~ship_gym.hydro.forward_speed.default_speed_cutoff` of the hull's Lpp."""
+    if setup.speed_cutoff is not None:
+        return float(setup.speed_cutoff)
+    return default_speed_cutoff(hull.particulars.lpp, hull.g)
+
+
 def build_force_models(
     setup: ShipSetup,
     hull: Hull,
@@ -307,12 +354,16 @@ def build_force_models(
     speed); see the module docstring for the list."""
     models: list[ForceModel] = [FroudeKrylovHydrostatics(hull, wave_field, method=setup.fk_method)]
     omega_roll = roll_natural_frequency(hull, database)
+    terms, cutoff = setup.speed_terms, speed_cutoff_of(setup, hull)
     if setup.radiation in ("state_space", "convolution"):
-        # the horizontal-plane Munk terms are inside the manoeuvring derivatives when those are on
-        # (ship_gym.hydro.forward_speed, "Two planes")
-        terms: SpeedTerms = "vertical" if setup.manoeuvring else "all"
         models.append(
-            RadiationMemory(database, method=setup.radiation, dt=setup.dt, speed_terms=terms)
+            RadiationMemory(
+                database,
+                method=setup.radiation,
+                dt=setup.dt,
+                speed_terms=terms,
+                speed_cutoff=cutoff,
+            )
         )
     elif setup.radiation in ("2a", "2b"):
         w_e = abs(
@@ -327,7 +378,18 @@ def build_force_models(
             )
         )
     if setup.diffraction and wave_field is not None:
-        models.append(Diffraction(database, wave_field))
+        # the scattered flow's Kirchhoff moment pairs with the radiated flow's (same planes and
+        # high-pass); without the memory model there is no moment to pair with
+        memory = setup.radiation in ("state_space", "convolution")
+        paired = memory and setup.diffraction_speed_terms
+        models.append(
+            Diffraction(
+                database,
+                wave_field,
+                speed_terms=terms if paired else "none",
+                speed_cutoff=cutoff,
+            )
+        )
     if setup.added_resistance != "none" and wave_field is not None:
         models.append(
             AddedResistance.from_hull(hull, wave_field, components=setup.added_resistance)

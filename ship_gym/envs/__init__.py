@@ -7,6 +7,6 @@ together) seen through :class:`~ship_gym.envs.base.TaskEnv` (one episode, ``gymn
 :class:`~ship_gym.envs.base.TaskVectorEnv` (N episodes in one call, ``gymnasium.vector.VectorEnv``).
 """
 
-from ship_gym.envs.registration import ENV_IDS, register_envs
+from ship_gym.envs.registration import ENV_IDS, REGISTERED_IDS, register_envs
 
-__all__ = ["ENV_IDS", "register_envs"]
+__all__ = ["ENV_IDS", "REGISTERED_IDS", "register_envs"]

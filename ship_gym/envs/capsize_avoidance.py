@@ -25,14 +25,19 @@ from numpy.typing import NDArray
 from ship_gym.conventions import GRAVITY
 from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
-from ship_gym.envs.docstrings import VERSION_HISTORY, env_docstring, vector_env_docstring
+from ship_gym.envs.docstrings import (
+    FORWARD_SPEED_V3,
+    VERSION_HISTORY,
+    env_docstring,
+    vector_env_docstring,
+)
 from ship_gym.envs.env_task import S175_MESH, ShipEnvTask, ship_kwargs, ship_particulars
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.ship_task import StepStatistics
 from ship_gym.envs.validation import check_positive, check_range, check_real, check_weight
 from ship_gym.numerics.angles import wrap_angle_scalar
-from ship_gym.typing import IntegratorName, Precision
+from ship_gym.typing import ForwardSpeedModel, IntegratorName, Precision
 
 __all__ = [
     "MAX_EPISODE_STEPS",
@@ -125,6 +130,7 @@ class CapsizeAvoidanceTask(ShipEnvTask):
         integrator: IntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
         precision: Precision = "float32",
+        forward_speed_model: ForwardSpeedModel = "relative_motion",
         num_threads: int = 1,
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 30.0,
@@ -332,6 +338,7 @@ _ARGUMENTS: dict[str, tuple[str, str]] = {
         "telegraph action is a change per step (zero action = keep course and speed); the sea "
         "state as observed (T_W, λ/L, H/L) and the loading's roll period T_R are observed, "
         "the telegraph as a fraction of the self-propulsion rpm.",
+        FORWARD_SPEED_V3,
     ),
 )
 class CapsizeAvoidanceEnv(TaskEnv):

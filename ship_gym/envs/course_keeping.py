@@ -16,7 +16,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
-from ship_gym.envs.docstrings import VERSION_HISTORY, env_docstring, vector_env_docstring
+from ship_gym.envs.docstrings import (
+    FORWARD_SPEED_V3,
+    VERSION_HISTORY,
+    env_docstring,
+    vector_env_docstring,
+)
 from ship_gym.envs.env_task import (
     RUDDER_LIMIT_DEG,
     S175_MESH,
@@ -27,7 +32,7 @@ from ship_gym.envs.env_task import (
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.ship_task import StepStatistics, clip_into, write_heading_observations
 from ship_gym.envs.validation import check_positive, check_real, check_weight
-from ship_gym.typing import IntegratorName, Precision
+from ship_gym.typing import ForwardSpeedModel, IntegratorName, Precision
 
 __all__ = ["MAX_EPISODE_STEPS", "CourseKeepingEnv", "CourseKeepingTask", "CourseKeepingVectorEnv"]
 
@@ -61,6 +66,7 @@ class CourseKeepingTask(ShipEnvTask):
         integrator: IntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
         precision: Precision = "float32",
+        forward_speed_model: ForwardSpeedModel = "relative_motion",
         num_threads: int = 1,
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 25.0,
@@ -196,6 +202,7 @@ _ARGUMENTS: dict[str, tuple[str, str]] = {
         "the heading error (τ = 100 s) and the rudder travel over the last step are observed "
         "(v1's PPO kept a steady error of ≈ 0.9° that an integral removes, and the servo lags "
         "its command by up to 15 s at 2.32 °/s).",
+        FORWARD_SPEED_V3,
     ),
 )
 class CourseKeepingEnv(TaskEnv):

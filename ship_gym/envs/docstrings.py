@@ -53,6 +53,11 @@ SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
     "integrator": ("-", '"holloway" (1 force evaluation/step) or "rk4" (4)'),
     "hull_mesh": ("-", "offsets-hull mesh (sections, panels below/above water, deck)"),
     "precision": ("-", '"float32" or "float64" wave sums of the Froude–Krylov kernel'),
+    "forward_speed_model": (
+        "-",
+        '"relative_motion" (speed terms on the motion relative to the waves) or '
+        '"radiation_only" (the -v2 model)',
+    ),
     "num_threads": ("-", "numba threads over the batch's ships (1: serial)"),
     "capsize_angle_deg": ("deg", "capsize roll angle (None: vanishing angle of the loading)"),
     "dangerous_roll_deg": ("deg", "roll angle of the Safe-RL cost"),
@@ -179,6 +184,17 @@ VERSION_HISTORY: tuple[str, ...] = (
     "default (docs/accuracy/results.md: ≤ 3e-5 % on every motion statistic).",
 )
 """The version history every ship environment shares (an env appends its own lines)."""
+
+FORWARD_SPEED_V3 = (
+    "v3: forward speed in every heading (issue #34): the diffraction force at speed in "
+    "relative-motion form with the scattered flow's Kirchhoff moment, and the moment "
+    "high-passed below ω_c = 0.25 √(g/L) (ship_gym.hydro.forward_speed), so that the speed "
+    "terms act on the motion relative to the incident flow (v2's radiated momentum alone "
+    "pitched the S175 0.45 k a in beam seas at Fn 0.3 and made capsizes in beam and "
+    "quartering seas that strip theory does not have). The -v2 id stays registered with "
+    'forward_speed_model="radiation_only", the model its published results were made with.'
+)
+"""The v3 line every ship environment appends to its version history."""
 
 
 def env_docstring(

@@ -19,7 +19,7 @@ from ship_gym.conventions import GRAVITY
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.ship_task import ShipTask, StepStatistics
 from ship_gym.envs.validation import check_real
-from ship_gym.typing import IntegratorName, Precision
+from ship_gym.typing import ForwardSpeedModel, IntegratorName, Precision
 
 if TYPE_CHECKING:
     from ship_gym.engine.ship import ShipSetup
@@ -104,6 +104,7 @@ def task_setup(
     hull_mesh: Sequence[int],
     kg: float | None,
     precision: Precision = "float32",
+    forward_speed_model: ForwardSpeedModel = "relative_motion",
 ) -> ShipSetup:
     """The setup of the ship tasks: state-space radiation memory, diffraction, Ikeda roll
     damping, propulsion (Holtrop resistance + B-series propeller), manoeuvring forces and a
@@ -128,6 +129,10 @@ def task_setup(
         KG of the loading [m] (None: the ship's; the S175's 9.55 m, GM ≈ 1.0 m).
     precision : {"float32", "float64"}
         Wave sums of the Froude–Krylov kernel (``fk_method`` "fast32" or "fast").
+    forward_speed_model : {"relative_motion", "radiation_only"}
+        The speed terms on the motion relative to the incident flow (default), or on the
+        radiated momentum only, without the moment's high-pass (the ``-v2`` environments;
+        :data:`FORWARD_SPEED_MODELS`).
     """
     from ship_gym.engine.ship import ShipSetup
     from ship_gym.ship import load_ship
@@ -192,7 +197,24 @@ def task_setup(
         manoeuvring=True,
         rudder=rudder,
         fk_method="fast32" if precision == "float32" else "fast",
+        **forward_speed_fields(forward_speed_model),
     )
+
+
+FORWARD_SPEED_MODELS: dict[str, dict[str, Any]] = {
+    "relative_motion": {},
+    "radiation_only": {"speed_cutoff": 0.0, "diffraction_speed_terms": False},
+}
+"""The :class:`~ship_gym.engine.ship.ShipSetup` fields of each forward-speed model."""
+
+
+def forward_speed_fields(model: str) -> dict[str, Any]:
+    """The ShipSetup fields of ``forward_speed_model`` (a ValueError naming it otherwise)."""
+    if model not in FORWARD_SPEED_MODELS:
+        raise ValueError(
+            f"forward_speed_model={model!r}; expected one of {tuple(FORWARD_SPEED_MODELS)}"
+        )
+    return dict(FORWARD_SPEED_MODELS[model])
 
 
 # =============================================================================================
@@ -215,6 +237,7 @@ SHIP_KWARGS: tuple[str, ...] = (
     "capsize_penalty",
     "sensor_noise",
     "wave_preview_m",
+    "forward_speed_model",
 )
 """The environment keyword arguments :class:`ShipEnvTask` takes as they are
 (:func:`ship_kwargs`)."""
@@ -267,6 +290,8 @@ class ShipEnvTask(ShipTask, abc.ABC):
         Per-episode sea.
     ship, froude_number, physics_dt_s, integrator, hull_mesh, kg_m, precision
         :func:`task_setup` arguments (ship, Fn [-], dt [s], scheme, mesh, KG [m], wave sums).
+    forward_speed_model : {"relative_motion", "radiation_only"}
+        :func:`task_setup`'s forward-speed model.
     num_threads : int
         numba threads over the ships in the compiled loop (1: serial).
     control_dt_s : float
@@ -308,6 +333,7 @@ class ShipEnvTask(ShipTask, abc.ABC):
         setup_changes: Mapping[str, Any] | None = None,
         extra_observations: Sequence[tuple[str, float, float]] = (),
         ship: str = "s175",
+        forward_speed_model: ForwardSpeedModel = "relative_motion",
     ) -> None:
         setup = task_setup(
             ship=ship,
@@ -318,6 +344,7 @@ class ShipEnvTask(ShipTask, abc.ABC):
             hull_mesh=hull_mesh,
             kg=kg_m,
             precision=precision,
+            forward_speed_model=forward_speed_model,
         )
         if not (
             isinstance(num_threads, int | np.integer)

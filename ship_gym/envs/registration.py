@@ -38,16 +38,24 @@ class EnvEntry:
         vector env counts its own steps).
     version : int
         The id's ``-vN`` (bumped when dynamics, observations, rewards or termination change).
+    earlier : tuple of (int, dict)
+        Earlier versions kept registered, each with the keyword arguments that reproduce it
+        (its published results and shipped policies were made with it).
     """
 
     name: str
     module: str
     max_episode_steps: int
     version: int
+    earlier: tuple[tuple[int, tuple[tuple[str, object], ...]], ...] = ()
 
     @property
     def id(self) -> str:
         return f"{NAMESPACE}/{self.name}-v{self.version}"
+
+    def ids(self) -> tuple[str, ...]:
+        """The current id and the ids of the :attr:`earlier` versions."""
+        return (self.id, *(f"{NAMESPACE}/{self.name}-v{v}" for v, _ in self.earlier))
 
     @property
     def entry_point(self) -> str:
@@ -58,14 +66,21 @@ class EnvEntry:
         return f"ship_gym.envs.{self.module}:{self.name}VectorEnv"
 
 
+_RADIATION_ONLY = ((2, (("forward_speed_model", "radiation_only"),)),)
+"""v2 of the ship tasks: the forward-speed model of issue #13 (docstrings.FORWARD_SPEED_V3)."""
+
 ENTRIES: tuple[EnvEntry, ...] = (
-    EnvEntry("CourseKeeping", "course_keeping", 1000, 2),
-    EnvEntry("RollStabilization", "roll_stabilisation", 1000, 2),
-    EnvEntry("RideControl", "ride_control", 1000, 2),
-    EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500, 2),
+    EnvEntry("CourseKeeping", "course_keeping", 1000, 3, _RADIATION_ONLY),
+    EnvEntry("RollStabilization", "roll_stabilisation", 1000, 3, _RADIATION_ONLY),
+    EnvEntry("RideControl", "ride_control", 1000, 3, _RADIATION_ONLY),
+    EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500, 3, _RADIATION_ONLY),
     EnvEntry("RollOneDOF", "roll_one_dof", 1000, 0),
 )
 ENV_IDS: tuple[str, ...] = tuple(e.id for e in ENTRIES)
+"""The current id of every environment."""
+REGISTERED_IDS: tuple[str, ...] = tuple(i for e in ENTRIES for i in e.ids())
+"""Every registered id: the current ones and the earlier versions kept
+(:attr:`EnvEntry.earlier`)."""
 
 
 def max_episode_steps(name: str) -> int:
@@ -89,21 +104,25 @@ def env_class_of(env_id: str) -> type[TaskEnv]:
 
     bare = env_id.split(":", 1)[1] if env_id.startswith(f"{NAMESPACE}:") else env_id
     for entry in ENTRIES:
-        if entry.id == bare:
+        if bare in entry.ids():
             module = importlib.import_module(f"ship_gym.envs.{entry.module}")
             env_class: type[TaskEnv] = getattr(module, f"{entry.name}Env")
             return env_class
-    raise ValueError(f"{env_id!r} is not a ship_gym environment id; known: {list(ENV_IDS)}")
+    raise ValueError(f"{env_id!r} is not a ship_gym environment id; known: {list(REGISTERED_IDS)}")
 
 
 def register_envs() -> None:
     """Register every ship_gym id with Gymnasium (idempotent)."""
     for entry in ENTRIES:
-        if entry.id in gymnasium.registry:
-            continue
-        gymnasium.register(
-            id=entry.id,
-            entry_point=entry.entry_point,
-            vector_entry_point=entry.vector_entry_point,
-            max_episode_steps=entry.max_episode_steps,
-        )
+        versions = ((entry.version, ()), *entry.earlier)
+        for version, kwargs in versions:
+            env_id = f"{NAMESPACE}/{entry.name}-v{version}"
+            if env_id in gymnasium.registry:
+                continue
+            gymnasium.register(
+                id=env_id,
+                entry_point=entry.entry_point,
+                vector_entry_point=entry.vector_entry_point,
+                max_episode_steps=entry.max_episode_steps,
+                kwargs=dict(kwargs),
+            )

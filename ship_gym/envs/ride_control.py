@@ -15,13 +15,18 @@ from numpy.typing import NDArray
 
 from ship_gym.comfort.metrics import ComfortSample
 from ship_gym.envs.base import TaskEnv, TaskStep, TaskVectorEnv
-from ship_gym.envs.docstrings import VERSION_HISTORY, env_docstring, vector_env_docstring
+from ship_gym.envs.docstrings import (
+    FORWARD_SPEED_V3,
+    VERSION_HISTORY,
+    env_docstring,
+    vector_env_docstring,
+)
 from ship_gym.envs.env_task import S175_MESH, irregular_sea, point_scaled_from_s175, ship_kwargs
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.roll_stabilisation import ComfortShipTask
 from ship_gym.envs.ship_task import StepStatistics
 from ship_gym.envs.validation import check_positive, check_weight
-from ship_gym.typing import IntegratorName, Precision
+from ship_gym.typing import ForwardSpeedModel, IntegratorName, Precision
 
 __all__ = ["MAX_EPISODE_STEPS", "RideControlEnv", "RideControlTask", "RideControlVectorEnv"]
 
@@ -58,6 +63,7 @@ class RideControlTask(ComfortShipTask):
         integrator: IntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
         precision: Precision = "float32",
+        forward_speed_model: ForwardSpeedModel = "relative_motion",
         num_threads: int = 1,
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 25.0,
@@ -162,6 +168,7 @@ _ARGUMENTS: dict[str, tuple[str, str]] = {
         "default, equal to effort_weight); the foil command and its travel over the last step "
         "are observed (the servo lags the command: with the angle alone the task was not Markov "
         "in the actuator).",
+        FORWARD_SPEED_V3,
     ),
 )
 class RideControlEnv(TaskEnv):

@@ -18,7 +18,12 @@ from numpy.typing import NDArray
 
 from ship_gym.comfort.metrics import ComfortSample, PassengerComfort
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
-from ship_gym.envs.docstrings import VERSION_HISTORY, env_docstring, vector_env_docstring
+from ship_gym.envs.docstrings import (
+    FORWARD_SPEED_V3,
+    VERSION_HISTORY,
+    env_docstring,
+    vector_env_docstring,
+)
 from ship_gym.envs.env_task import (
     RUDDER_LIMIT_DEG,
     S175_MESH,
@@ -30,7 +35,7 @@ from ship_gym.envs.env_task import (
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.ship_task import StepStatistics
 from ship_gym.envs.validation import check_point, check_positive, check_weight
-from ship_gym.typing import IntegratorName, Precision
+from ship_gym.typing import ForwardSpeedModel, IntegratorName, Precision
 
 __all__ = [
     "MAX_EPISODE_STEPS",
@@ -176,6 +181,7 @@ class RollStabilizationTask(ComfortShipTask):
         integrator: IntegratorName = "holloway",
         hull_mesh: Sequence[int] = S175_MESH,
         precision: Precision = "float32",
+        forward_speed_model: ForwardSpeedModel = "relative_motion",
         num_threads: int = 1,
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 25.0,
@@ -304,6 +310,7 @@ _ARGUMENTS: dict[str, tuple[str, str]] = {
         "0.05, under which PPO held the fins at their limit on 67 % of the steps); the fin "
         "command and the fin travel over the last step are observed (the servo lags the "
         "command: with the angle alone the task was not Markov in the actuator).",
+        FORWARD_SPEED_V3,
     ),
 )
 class RollStabilizationEnv(TaskEnv):

@@ -44,6 +44,16 @@ exactly. The transfer function is the **zero-speed** X_D, looked up at
   pattern k(ω_e) = ω_e²/g on the hull, a factor (ω_e/ω)² off (2.6 in head seas at Fn 0.25 near
   the S175's heave resonance). Kept for comparison.
 
+Forward-speed moment of the scattered flow
+-------------------------------------------
+With ``speed_terms`` other than ``"none"`` the model adds Kirchhoff's moment of the scattered
+flow's momentum, u H(ω_e) Lᵀ P_D with P_D(t) = Re Σⱼ conj(c'ⱼ(t)) X_D,ⱼ/(iωⱼ) (eq. 4–5 of
+:mod:`ship_gym.hydro.forward_speed`: +u P_D,heave on pitch, −u P_D,sway on yaw, u the ship's own
+surge velocity as in the radiation model). It pairs with the radiation model's moment of the
+radiated momentum (same ``speed_terms`` and ``speed_cutoff``): together they act on the motion
+relative to the incident flow. The per-component factors X_D/(iω) H(ω_e) are cached beside X_D
+(two more columns of the cache, with their heading derivative).
+
 Negative encounter frequency (following seas, ship overtaking the waves, U cos β > g/ω), with
 ``frequency="encounter"``: the folded phasor turns backwards, conj(c'(t)) ∝ e^{+i|ω_e|t}. A
 real linear system with the transfer function H(ω) in the e^{−iωt} convention has
@@ -68,12 +78,14 @@ Interpolation and caching
 The database headings are completed to the full circle by
 :func:`ship_gym.hydro.database.mirror_headings` (port–starboard symmetry) and extended
 periodically; X_D is interpolated bilinearly in (ω, β) on the real and imaginary parts (exact at
-database nodes). The per-component values X_D(ω'ⱼ, βⱼ) and their heading derivatives are
-cached and recomputed only when the heading ψ has moved by more than ``heading_tolerance_deg``
-(default 0.5°) since the last update, or U changed; in between, X_D + (ψ − ψ_ref) ∂X_D/∂ψ is used,
-so the force is continuous in ψ and a refresh changes it only by the O(Δψ²) curvature term (a
-plain cache would jump by O(Δψ) and cap time-integration accuracy, as the convergence study
-showed). The folding of the phasors to O is exact at every evaluation (n complex exponentials).
+database nodes). The per-component values X_D(ω'ⱼ, βⱼ) (taken to the ship's surge velocity u,
+:mod:`ship_gym.hydro.forward_speed` eq. 6) and their heading and speed derivatives are cached and
+recomputed only when the heading ψ has moved by more than ``heading_tolerance_deg`` (default
+0.5°) or u by more than ``speed_tolerance`` (default 0.25 m/s) since the last update; in
+between, X_D + (ψ − ψ_ref) ∂X_D/∂ψ + (u − u_ref) ∂X_D/∂U is used, so the force is continuous in
+ψ and u and a refresh changes it only by the O(Δ²) curvature term (a plain cache would jump by
+O(Δψ) and cap time-integration accuracy, as the convergence study showed). The folding of the
+phasors to O is exact at every evaluation (n complex exponentials).
 
 Heading coverage
 ----------------
@@ -108,9 +120,17 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from ship_gym.conventions import DOF_NAMES, N_DOF, YAW
+from ship_gym.conventions import DOF_NAMES, N_DOF, PITCH, SURGE, YAW
 from ship_gym.forces.base import ForceContext, ForceModel
-from ship_gym.hydro.database import mirror_headings, split_frequencies
+from ship_gym.hydro.database import as_arrays, mirror_headings, split_frequencies
+from ship_gym.hydro.forward_speed import (
+    SpeedTerms,
+    check_speed_cutoff,
+    check_speed_terms,
+    complex_mass_table,
+    momentum_coefficients,
+    speed_correct_element,
+)
 from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.waves.wave_field import WaveField
 
@@ -121,6 +141,32 @@ AboveRange = Literal["zero", "raise"]
 HeadingExtrapolation = Literal["raise", "warn", "allow"]
 
 _TWO_PI = 2.0 * math.pi
+
+CACHE_COLUMNS = N_DOF + 2
+"""Columns of the per-component cache: X_D (6) and the scattered momentum's pitch and yaw
+moment factors (module docstring, *Forward-speed moment of the scattered flow*)."""
+
+
+def kirchhoff_parameters(
+    speed_terms: SpeedTerms, speed_cutoff: float, enabled: bool = True
+) -> NDArray[np.float64]:
+    """(Lᵀ[pitch, heave], Lᵀ[yaw, sway], ω_c [rad/s], enabled): the speed correction's
+    parameters as the row kernels take them (enabled 0: the zero-speed force, no moment)."""
+    pitch, yaw = momentum_coefficients(check_speed_terms(speed_terms))
+    on = bool(enabled) and speed_terms != "none"
+    return np.array([pitch, yaw, check_speed_cutoff(speed_cutoff), 1.0 if on else 0.0])
+
+
+@nb.njit(cache=True, nogil=True)
+def _speed_correct_columns(w_wave, w_enc, kirchhoff, grid, table, out):  # pragma: no cover
+    """:func:`~ship_gym.hydro.forward_speed.speed_correct_element` for every row of ``out``
+    (n, 8) when enabled, else zero moment columns."""
+    for j in range(out.shape[0]):
+        if kirchhoff[3] > 0.0:
+            speed_correct_element(w_wave[j], w_enc[j], kirchhoff, grid, table, out, j)
+        else:
+            out[j, N_DOF] = 0.0j
+            out[j, N_DOF + 1] = 0.0j
 
 
 @nb.njit(cache=True, nogil=True)
@@ -147,7 +193,7 @@ def transfer_element(w, b, table, beta_ext, omega_db, out, j):  # pragma: no cov
     c10, c11 = fw * (1.0 - fb), fw * fb
     above = aw > w_max * (1.0 + 1e-12)
     scale = (aw / w_min) ** 2
-    for o in range(out.shape[1]):
+    for o in range(table.shape[2]):
         x = (
             c00 * table[iw, ib, o]
             + c01 * table[iw, ib + 1, o]
@@ -197,6 +243,16 @@ class Diffraction(ForceModel):
         Angle [deg] outside the covered headings accepted with a warning.
     max_heading_gap_deg : float
         Widest gap [deg] between consecutive database headings that is still interpolated.
+    speed_terms : {"all", "vertical", "none"}
+        Planes of the scattered flow's forward-speed moment (module docstring); give the
+        radiation model's.
+    speed_cutoff : float
+        ω_c [rad/s] of that moment's high-pass (:mod:`ship_gym.hydro.forward_speed` eq. 5);
+        give the radiation model's.
+    speed_tolerance : float
+        Change of the ship's surge velocity [m/s] that triggers a recomputation of the cache
+        (the correction at speed follows the ship's own surge velocity u, to first order in
+        u − u_ref between refreshes).
 
     Attributes
     ----------
@@ -224,7 +280,16 @@ class Diffraction(ForceModel):
         heading_extrapolation: HeadingExtrapolation = "raise",
         heading_extrapolation_tolerance_deg: float = 5.0,
         max_heading_gap_deg: float = 90.0,
+        speed_terms: SpeedTerms = "all",
+        speed_cutoff: float = 0.0,
+        speed_tolerance: float = 0.25,
     ) -> None:
+        self.speed_terms: SpeedTerms = check_speed_terms(speed_terms)
+        self.speed_cutoff: float = check_speed_cutoff(speed_cutoff)
+        self.kirchhoff: NDArray[np.float64] = kirchhoff_parameters(
+            speed_terms, speed_cutoff, enabled=frequency == "wave"
+        )
+        """The speed correction's parameters (:func:`kirchhoff_parameters`)."""
         if not isinstance(database, xr.Dataset):
             raise ValueError(
                 f"database must be an xarray.Dataset (ship_gym.hydro.load_database); got "
@@ -265,6 +330,12 @@ class Diffraction(ForceModel):
         self.above_range: str = above_range
         self.wave_field: WaveField = wave_field
         self._heading_tol = math.radians(tol)
+        speed_tol = float(speed_tolerance)
+        if not (math.isfinite(speed_tol) and speed_tol > 0.0):
+            raise ValueError(
+                f"speed_tolerance={speed_tolerance!r}; expected a finite speed > 0 [m/s]"
+            )
+        self._speed_tol = speed_tol
 
         ds = self._full_circle(database)
         finite, _, _ = split_frequencies(ds)
@@ -286,6 +357,9 @@ class Diffraction(ForceModel):
             raise ValueError(f"wave_direction {beta} must hold ≥ 2 distinct headings")
         self.omega: NDArray[np.float64] = omega
         self.wave_direction: NDArray[np.float64] = beta
+        self.complex_mass = self._complex_mass(ds)
+        """(grid (m,) [rad/s], Z₃₃ and Z₂₂ (2, m) [kg]) of the speed correction
+        (:func:`ship_gym.hydro.forward_speed.complex_mass_table`)."""
         self.covered_headings: list[tuple[float, float]] = covered_heading_arcs(
             beta, math.radians(float(max_heading_gap_deg))
         )
@@ -303,8 +377,9 @@ class Diffraction(ForceModel):
         self._kx = np.asarray(w.kx, dtype=float)
         self._ky = np.asarray(w.ky, dtype=float)
         self._n = w.n_components
-        self._xd = np.zeros((self._n, N_DOF), dtype=complex)
-        self._dxd = np.zeros((self._n, N_DOF), dtype=complex)
+        self._xd = np.zeros((self._n, CACHE_COLUMNS), dtype=complex)
+        self._dxd = np.zeros((self._n, CACHE_COLUMNS), dtype=complex)
+        self._dxu = np.zeros((self._n, CACHE_COLUMNS), dtype=complex)
         self._psi_ref: float | None = None
         self._u_ref: float | None = None
         self.n_above_range: int = 0
@@ -343,6 +418,19 @@ class Diffraction(ForceModel):
                 "'allow' to accept the extrapolation"
             )
         warnings.warn(message, UserWarning, stacklevel=3)
+
+    def _complex_mass(self, ds: xr.Dataset) -> tuple[NDArray[np.float64], NDArray[np.complex128]]:
+        if self.kirchhoff[3] == 0.0 or not {"added_mass", "radiation_damping"} <= set(ds):
+            if self.kirchhoff[3] != 0.0:
+                raise ValueError(
+                    "the diffraction force at speed needs the database's added_mass and "
+                    "radiation_damping (forward_speed eq. 6), or speed_terms='none'"
+                )
+            return np.array([0.0, 1.0]), np.ones((2, 2), dtype=complex)
+        arrays = as_arrays(ds)
+        return complex_mass_table(
+            arrays.omega, arrays.added_mass, arrays.radiation_damping, arrays.added_mass_zero
+        )
 
     @staticmethod
     def _full_circle(ds: xr.Dataset) -> xr.Dataset:
@@ -392,6 +480,21 @@ class Diffraction(ForceModel):
         return out.reshape(*shape, N_DOF)
 
     @property
+    def speed_tolerance(self) -> float:
+        """Change of the ship's surge velocity [m/s] beyond which the cache is recomputed; ∞
+        when the cache does not depend on it (the wave-frequency look-up without the speed
+        correction)."""
+        if self.frequency == "wave" and self.kirchhoff[3] == 0.0:
+            return math.inf
+        return self._speed_tol
+
+    @property
+    def speed_step(self) -> float:
+        """Half-width [m/s] of the central difference ∂X_D/∂U: the speed tolerance, at least
+        0.01 m/s."""
+        return max(self._speed_tol, 0.01)
+
+    @property
     def heading_step(self) -> float:
         """Half-width h [rad] of the central difference ∂X_D/∂ψ ≈ (X_D(ψ + h) − X_D(ψ − h))/2h:
         the heading tolerance, at least 1e-4 rad."""
@@ -415,8 +518,8 @@ class Diffraction(ForceModel):
         wavenumber: np.ndarray,
         psi: np.ndarray | float,
         speed: float,
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """X_D(ω'ⱼ, βⱼ) at heading ψ and its derivative ∂X_D/∂ψ, for any leading shape.
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """X_D(ω'ⱼ, βⱼ) at heading ψ and speed U and its derivatives, for any leading shape.
 
         Parameters
         ----------
@@ -429,32 +532,44 @@ class Diffraction(ForceModel):
 
         Returns
         -------
-        x, dx : numpy.ndarray
-            (..., n, 6) X_D and ∂X_D/∂ψ (central difference over the heading tolerance band).
+        x, dx, du : numpy.ndarray
+            (..., n, 8) X_D with the scattered momentum's moment factors (:data:`CACHE_COLUMNS`)
+            and their ∂/∂ψ and ∂/∂U (central differences over :attr:`heading_step` and
+            :attr:`speed_step`).
         omega_lookup, beta : numpy.ndarray
             (..., n) the frequencies and relative headings used.
         """
 
-        def at(heading: np.ndarray | float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        def at(
+            heading: np.ndarray | float, speed: float = speed
+        ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             beta = np.mod(np.asarray(direction, dtype=float) - heading, _TWO_PI)
-            if self.frequency == "encounter":
-                w = omega - wavenumber * speed * np.cos(beta)
-            else:
-                w = np.asarray(omega, dtype=float)
-            return self.diffraction_transfer(w, beta), w, beta
+            wave = np.broadcast_to(np.asarray(omega, dtype=float), beta.shape)
+            w_enc = wave - np.asarray(wavenumber, dtype=float) * speed * np.cos(beta)
+            w = w_enc if self.frequency == "encounter" else wave
+            xd = self.diffraction_transfer(w, beta)
+            table = np.zeros((*xd.shape[:-1], CACHE_COLUMNS), dtype=complex)
+            table[..., :N_DOF] = xd
+            flat = table.reshape(-1, CACHE_COLUMNS)
+            _speed_correct_columns(
+                np.ascontiguousarray(wave.ravel()), np.ascontiguousarray(w_enc.ravel()),
+                self.kirchhoff, *self.complex_mass, flat,
+            )  # fmt: skip
+            return flat.reshape(table.shape), w, beta
 
         x, w, beta = at(psi)
-        h = self.heading_step
+        h, hu = self.heading_step, self.speed_step
         dx = (at(np.asarray(psi) + h)[0] - at(np.asarray(psi) - h)[0]) / (2.0 * h)
-        return x, dx, w, beta
+        du = (at(psi, speed + hu)[0] - at(psi, speed - hu)[0]) / (2.0 * hu)
+        return x, dx, du, w, beta
 
     def _update(self, psi: float, speed: float) -> None:
-        # X_D at the reference heading and its heading derivative: between refreshes the force
-        # follows X_D + (ψ − ψ_ref) ∂X_D/∂ψ, so it is continuous in ψ; a refresh changes it only
-        # by the O(Δψ²) curvature of the interpolated transfer functions (instead of an O(Δψ)
-        # jump that would cap the integrators' accuracy)
+        # X_D at the reference heading and speed and its derivatives: between refreshes the
+        # force follows X_D + (ψ − ψ_ref) ∂X_D/∂ψ + (u − u_ref) ∂X_D/∂U, so it is continuous in
+        # ψ and u; a refresh changes it only by the O(Δ²) curvature of the interpolated transfer
+        # functions (instead of an O(Δ) jump that would cap the integrators' accuracy)
         w = self.wave_field
-        self._xd, self._dxd, omega, beta = self.heading_expansion(
+        self._xd, self._dxd, self._dxu, omega, beta = self.heading_expansion(
             w.direction, w.omega, w.wavenumber, psi, speed
         )
         self.omega_lookup = omega
@@ -504,17 +619,22 @@ class Diffraction(ForceModel):
         if eta.shape != (N_DOF,):
             raise ValueError(f"ctx.eta has shape {eta.shape}; expected (6,)")
         psi = float(eta[YAW])
-        speed = float(ctx.forward_speed)
+        u = float(np.asarray(ctx.nu, dtype=float)[SURGE])
         if (
             self._psi_ref is None
-            or speed != self._u_ref
+            or self._u_ref is None
+            or abs(u - self._u_ref) > self.speed_tolerance
             or abs(wrap_angle_scalar(psi - self._psi_ref)) > self._heading_tol
         ):
-            self._update(psi, speed)
-        assert self._psi_ref is not None  # set by _update
+            self._update(psi, u)
+        assert self._psi_ref is not None and self._u_ref is not None  # set by _update
         folded = c * np.exp(-1j * (self._kx * eta[0] + self._ky * eta[1]))
         dpsi = wrap_angle_scalar(psi - self._psi_ref)
-        force = (folded.conj() @ (self._xd + dpsi * self._dxd)).real
+        du = u - self._u_ref
+        columns = (folded.conj() @ (self._xd + dpsi * self._dxd + du * self._dxu)).real
+        force = columns[:N_DOF].copy()
+        force[PITCH] += u * columns[N_DOF]
+        force[YAW] += u * columns[N_DOF + 1]
         return force, empty
 
 
@@ -580,32 +700,45 @@ def transfer_at_heading(heading, speed, diff, out):  # pragma: no cover - compil
 
     As :meth:`Diffraction.heading_expansion`: β = (χⱼ − ψ) mod 2π and, at encounter
     frequency, ω' = ωⱼ − kⱼ U cos β, then the model's own element look-up
-    (:func:`ship_gym.forces.diffraction.transfer_element`).
+    (:func:`ship_gym.forces.diffraction.transfer_element`) and the scattered momentum's moment
+    correction at speed (:func:`ship_gym.hydro.forward_speed.speed_correct_element`: X_D to
+    speed and the scattered momentum's moment factors in out[j, 6:8]).
     """
     table, beta_ext, omega_db, direction, omega_c, wavenumber, encounter = diff[:7]
+    kirchhoff, grid, mass = diff[7:10]
     n_above = 0
     for j in range(direction.shape[0]):
         b = np.mod(direction[j] - heading, _TWO_PI)
-        w = omega_c[j] - wavenumber[j] * speed * math.cos(b) if encounter else omega_c[j]
+        w_enc = omega_c[j] - wavenumber[j] * speed * math.cos(b)
+        w = w_enc if encounter else omega_c[j]
         n_above += transfer_element(w, b, table, beta_ext, omega_db, out, j)
+        if kirchhoff[3] > 0.0:
+            speed_correct_element(omega_c[j], w_enc, kirchhoff, grid, mass, out, j)
+        else:
+            out[j, N_DOF] = 0.0j
+            out[j, N_DOF + 1] = 0.0j
     return n_above
 
 
 @nb.njit(cache=True, nogil=True)
-def refresh_diffraction_cache(psi, speed, diff, xd, dxd, diff_ref):  # pragma: no cover - compiled
-    """Cache X_D and ∂X_D/∂ψ (central difference over ±h) at heading ψ, as
-    :meth:`Diffraction.heading_expansion`; returns False, leaving the cache as it was, when the
-    model must raise (``above_range="raise"`` and a component above ω_max)."""
-    h, must_raise, work, count = diff[7:]
+def refresh_diffraction_cache(psi, speed, diff, xd, dxd, dxu, diff_ref):  # pragma: no cover
+    """Cache X_D, ∂X_D/∂ψ and ∂X_D/∂U (central differences over ±h, ±h_u) at heading ψ and
+    surge velocity ``speed``, as :meth:`Diffraction.heading_expansion`; returns False, leaving
+    the cache as it was, when the model must raise (``above_range="raise"`` and a component
+    above ω_max)."""
+    h, hu, must_raise, work, count = diff[10:]
     above = transfer_at_heading(psi, speed, diff, work[0])
     if above > 0 and must_raise:
         return False
     transfer_at_heading(psi + h, speed, diff, work[1])
     transfer_at_heading(psi - h, speed, diff, work[2])
+    transfer_at_heading(psi, speed + hu, diff, work[3])
+    transfer_at_heading(psi, speed - hu, diff, work[4])
     for j in range(xd.shape[0]):
-        for o in range(6):
+        for o in range(xd.shape[1]):
             xd[j, o] = work[0, j, o]
             dxd[j, o] = (work[1, j, o] - work[2, j, o]) / (2.0 * h)
+            dxu[j, o] = (work[3, j, o] - work[4, j, o]) / (2.0 * hu)
     diff_ref[0] = psi
     diff_ref[1] = speed
     count[0] += 1
@@ -613,13 +746,21 @@ def refresh_diffraction_cache(psi, speed, diff, xd, dxd, diff_ref):  # pragma: n
 
 
 @nb.njit(cache=True, nogil=True)
-def diffraction_force(psi, local, xd, dxd, diff_ref, total):  # pragma: no cover - compiled
-    """F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ), X_D cached at heading diff_ref[0]."""
+def diffraction_force(psi, u, local, xd, dxd, dxu, diff_ref, total):  # pragma: no cover
+    """F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ + Δu ∂X_D,ⱼ/∂U), X_D cached at heading
+    diff_ref[0] and surge velocity diff_ref[1], and the scattered momentum's moment
+    u Lᵀ H P_D from the cache's columns 6–7 (u the surge velocity [m/s])."""
     dpsi = wrap_angle_scalar(psi - diff_ref[0])
-    for o in range(6):
+    du = u - diff_ref[1]
+    for o in range(xd.shape[1]):
         s = 0.0
         for j in range(local.shape[0]):
             c = local[j]
-            x = xd[j, o] + dpsi * dxd[j, o]
+            x = xd[j, o] + dpsi * dxd[j, o] + du * dxu[j, o]
             s += c.real * x.real + c.imag * x.imag
-        total[o] += s
+        if o < N_DOF:
+            total[o] += s
+        elif o == N_DOF:
+            total[PITCH] += u * s
+        else:
+            total[YAW] += u * s

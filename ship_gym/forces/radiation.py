@@ -68,6 +68,7 @@ from ship_gym.hydro.forward_speed import (
     MOMENT_ROWS,
     SURGE_FREE,
     SpeedTerms,
+    check_speed_cutoff,
     check_speed_terms,
     momentum_rows,
 )
@@ -334,6 +335,11 @@ class RadiationMemory(ForceModel):
     commit_tolerance : float
         Allowed deviation of commit and evaluation times from the uniform grid, as a fraction
         of dt [-].
+    speed_terms : {"all", "vertical", "none"}
+        Planes of the forward-speed Kirchhoff moment (:mod:`ship_gym.hydro.forward_speed`).
+    speed_cutoff : float
+        ω_c [rad/s] of that moment's high-pass (:mod:`ship_gym.hydro.forward_speed` eq. 5); > 0
+        adds two states after the memory's (:attr:`n_filter_states`); 0: no high-pass.
 
     Attributes
     ----------
@@ -354,7 +360,7 @@ class RadiationMemory(ForceModel):
     frequency_error : tuple of numpy.ndarray or None
         (6, 6) relative RMS errors of the fit's A(ω) − A(∞) and B(ω) against the database [-].
     momentum_added_mass, momentum_memory : numpy.ndarray
-        (2, 6) and (2, n_states): the pitch and yaw rows of Kirchhoff's moment per unit surge
+        (2, 6) and (2, n_memory): the pitch and yaw rows of Kirchhoff's moment per unit surge
         velocity, on ν_p and on the states (:func:`speed_momentum_rows`;
         :mod:`ship_gym.hydro.forward_speed` eq. 2).
     """
@@ -375,10 +381,14 @@ class RadiationMemory(ForceModel):
         fit_options: Mapping[str, Any] | None = None,
         commit_tolerance: float = 1e-6,
         speed_terms: SpeedTerms = "all",
+        speed_cutoff: float = 0.0,
     ) -> None:
         if method not in ("state_space", "convolution"):
             raise ValueError(f"method={method!r}; expected 'state_space' or 'convolution'")
         self.speed_terms: SpeedTerms = check_speed_terms(speed_terms)
+        self.speed_cutoff: float = check_speed_cutoff(speed_cutoff)
+        self.n_filter_states: int = 2 if self.speed_cutoff > 0.0 else 0
+        """States of the Kirchhoff moment's high-pass (the last ones; 0 without it)."""
         h = _hydro_arrays(database)
         if h.added_mass_infinite is None:
             raise ValueError(
@@ -431,7 +441,7 @@ class RadiationMemory(ForceModel):
             self.kernels = kernels_on(self.dt / self._refine, n_steps * self.dt)
             self._setup_convolution(n_steps)
             # λ (heave and sway components) integrated as two states: λ̇ = μ
-            self.n_states = 2
+            self.n_states = 2 + self.n_filter_states
             select = np.zeros((N_DOF, 2))
             select[HEAVE, 0] = select[SWAY, 1] = 1.0
             self.momentum_added_mass = momentum_rows(self.A_inf * SURGE_FREE, speed_terms)
@@ -447,7 +457,7 @@ class RadiationMemory(ForceModel):
             )
             ss = self.state_space
             self.order = ss.order
-            self.n_states = ss.order
+            self.n_states = ss.order + self.n_filter_states
             self.fit_error = np.asarray(ss.fit_error)
             self.frequency_error = frequency_fit_error(
                 ss, h.omega, h.added_mass, h.radiation_damping, self.A_inf
@@ -656,24 +666,30 @@ class RadiationMemory(ForceModel):
             (n_states,) ż = A z + B ν_p (empty for the convolution).
         """
         v = perturbation_velocity(ctx)
-        z = np.asarray(states, dtype=float)
-        if z.shape != (self.n_states,):
-            raise ValueError(f"states has shape {z.shape}; expected ({self.n_states},)")
+        z_all = np.asarray(states, dtype=float)
+        if z_all.shape != (self.n_states,):
+            raise ValueError(f"states has shape {z_all.shape}; expected ({self.n_states},)")
+        n_memory = self.n_states - self.n_filter_states
+        z, z_filter = z_all[:n_memory], z_all[n_memory:]
         if self.method == "convolution":
             mu, mu_surge = self._memory_convolution(ctx, v)
             force = -mu
-            states_dot = (mu - mu_surge)[[HEAVE, SWAY]]  # λ̇: the memory of all but surge
+            memory_dot = (mu - mu_surge)[[HEAVE, SWAY]]  # λ̇: the memory of all but surge
         else:
             force = -(self._C @ z)
-            states_dot = self._A @ z + self._B @ v
+            memory_dot = self._A @ z + self._B @ v
             if self._has_d:
                 force -= self._D @ v
+        # Kirchhoff's moment of the radiated momentum, high-passed when a cut-off is set
+        # (ship_gym.hydro.forward_speed eq. 2 and 5)
+        moment = self.momentum_added_mass @ v + self.momentum_memory @ z
+        if self.n_filter_states:
+            moment = moment - z_filter
+            memory_dot = np.concatenate([memory_dot, self.speed_cutoff * moment])
         u = float(ctx.nu[SURGE])  # the ship's own surge velocity (= U to first order)
         if u != 0.0:
-            force[list(MOMENT_ROWS)] += u * (
-                self.momentum_added_mass @ v + self.momentum_memory @ z
-            )
-        return force, states_dot
+            force[list(MOMENT_ROWS)] += u * moment
+        return force, memory_dot
 
 
 # ============================================================================================
@@ -910,27 +926,33 @@ class ConstantCoefficientRadiation(ForceModel):
 @nb.njit(cache=True, nogil=True)
 def state_space_radiation(
     v, z, speed, a_ptr, a_idx, a_val, b_ptr, b_idx, b_val, c_ptr, c_idx, c_val, d_mat, has_d,
-    p_inf, p_mem, total, zdot,
+    p_inf, p_mem, cutoff, total, zdot,
 ):  # fmt: skip  # pragma: no cover - compiled
-    """Radiation memory: ż = A z + B ν_p into zdot, −(C z + D ν_p) + u Lᵀ(A(∞) ν_p + λ) added
-    to total (:mod:`ship_gym.hydro.forward_speed` eq. 2 with the surge velocity u for U,
+    """Radiation memory: ż = A z + B ν_p into zdot, −(C z + D ν_p) + u Lᵀ H(A(∞) ν_p + λ) added
+    to total (:mod:`ship_gym.hydro.forward_speed` eq. 2 and 5 with the surge velocity u for U,
     λ = C A⁻¹ z); A, B, C in CSR form (A
     block-diagonal, B one non-zero per state: O(n_states)); ``p_inf`` (2, 6) and ``p_mem``
-    (2, n) the pitch and yaw rows of Lᵀ A(∞) and Lᵀ C A⁻¹."""
+    (2, n) the pitch and yaw rows of Lᵀ A(∞) and Lᵀ C A⁻¹. With ``cutoff`` ω_c > 0 the two
+    states after the fit's n hold the momentum's low-pass m̄ (ṁ̄ = ω_c (m − m̄)) and the moment
+    acts on m − m̄ (the high-pass H of eq. 5)."""
     vp = np.empty(6)
     for i in range(6):
         vp[i] = v[i]
     vp[SURGE] -= speed
     u = v[SURGE]  # the Kirchhoff moment takes the ship's own surge velocity (= U to first order)
-    if u != 0.0:
+    n_fit = a_ptr.shape[0] - 1
+    if u != 0.0 or cutoff > 0.0:
         for r in range(2):
             s = 0.0
             for j in range(6):
                 s += p_inf[r, j] * vp[j]
-            for k in range(z.shape[0]):
+            for k in range(p_mem.shape[1]):
                 s += p_mem[r, k] * z[k]
+            if cutoff > 0.0:
+                s -= z[n_fit + r]
+                zdot[n_fit + r] = cutoff * s
             total[PITCH if r == 0 else YAW] += u * s
-    for i in range(a_ptr.shape[0] - 1):
+    for i in range(n_fit):
         s = 0.0
         for p in range(a_ptr[i], a_ptr[i + 1]):
             s += a_val[p] * z[a_idx[p]]

@@ -516,6 +516,7 @@ class HydroArrays(NamedTuple):
     wave_direction : (m,) headings [rad]
     excitation_force : (n, m, 6) complex, per unit amplitude
     hydrostatic_stiffness, inertia_matrix : (6, 6) or None
+    diffraction_force : (n, m, 6) complex per unit amplitude, or None (a database without it)
     """
 
     omega: np.ndarray
@@ -527,6 +528,7 @@ class HydroArrays(NamedTuple):
     excitation_force: np.ndarray
     hydrostatic_stiffness: np.ndarray | None
     inertia_matrix: np.ndarray | None
+    diffraction_force: np.ndarray | None = None
 
 
 def as_arrays(ds: xr.Dataset) -> HydroArrays:
@@ -552,6 +554,11 @@ def as_arrays(ds: xr.Dataset) -> HydroArrays:
         .values,
         hydrostatic_stiffness=mat("hydrostatic_stiffness"),
         inertia_matrix=mat("inertia_matrix"),
+        diffraction_force=None
+        if "diffraction_force" not in finite
+        else finite["diffraction_force"]
+        .transpose("omega", "wave_direction", "influenced_dof")
+        .values,
     )
 
 

@@ -79,7 +79,14 @@ from scipy.optimize import brentq
 
 from ship_gym.conventions import DOF_NAMES, GRAVITY, N_DOF, dof_index
 from ship_gym.hydro.database import HydroArrays, as_arrays, mirror_headings
-from ship_gym.hydro.forward_speed import SpeedTerms, check_speed_terms, radiation_impedance
+from ship_gym.hydro.forward_speed import (
+    SpeedTerms,
+    check_speed_cutoff,
+    check_speed_terms,
+    complex_mass_table,
+    diffraction_at_speed,
+    radiation_impedance,
+)
 from ship_gym.kinematics import encounter_frequency
 
 Frequency = Literal["encounter", "wave"]
@@ -206,10 +213,18 @@ def _headings_for(ds: xr.Dataset, beta: float) -> xr.Dataset:
     return full
 
 
-def _excitation_at(arrays: HydroArrays, beta: float, omega: np.ndarray, method: Interpolation):
+def _excitation_at(
+    arrays: HydroArrays,
+    beta: float,
+    omega: np.ndarray,
+    method: Interpolation,
+    force: np.ndarray | None = None,
+):
+    """``force`` (default the excitation force) (n_ω, n_β, 6) interpolated to (ω, β)."""
     grid = np.mod(arrays.wave_direction, _TWO_PI)
     order = np.argsort(grid)
-    grid, exc = grid[order], arrays.excitation_force[:, order, :]
+    exc = arrays.excitation_force if force is None else force
+    grid, exc = grid[order], exc[:, order, :]
     i, j, w = _heading_weights(grid, beta)
     f_beta = (1.0 - w) * exc[:, i, :] + w * exc[:, j, :]  # (n_omega, 6)
     w_grid = arrays.omega
@@ -261,6 +276,7 @@ def response_amplitude_operator(
     frequency: Frequency = "encounter",
     interpolation: Interpolation = "linear",
     speed_terms: SpeedTerms = "all",
+    speed_cutoff: float = 0.0,
 ) -> np.ndarray:
     """Complex RAOs per unit wave amplitude, solving eq. (2) of the module docstring.
 
@@ -294,7 +310,13 @@ def response_amplitude_operator(
     interpolation : {"linear", "cubic"}, optional
         Interpolation of the database along ω (see the module docstring).
     speed_terms : {"all", "vertical", "none"}, optional
-        Planes of the forward-speed Kirchhoff moment (:mod:`ship_gym.hydro.forward_speed`).
+        Planes of the forward-speed Kirchhoff moment (:mod:`ship_gym.hydro.forward_speed`), on
+        the radiated and on the scattered flow's momentum (its eq. 4; the database's
+        ``diffraction_force`` is needed at speed unless ``"none"``).
+    speed_cutoff : float, optional
+        ω_c [rad/s] of the moment's high-pass (:mod:`ship_gym.hydro.forward_speed` eq. 5;
+        :func:`~ship_gym.hydro.forward_speed.default_speed_cutoff` gives the engine's default);
+        0: Salvesen–Tuck–Faltinsen's terms at every encounter frequency.
 
     Returns
     -------
@@ -339,13 +361,25 @@ def response_amplitude_operator(
     c = c + _matrix("restoring_extra", restoring_extra, None)
     b_extra = _matrix("extra_damping", extra_damping, None)
 
+    cutoff = check_speed_cutoff(speed_cutoff)
     w_e = encounter_frequency(w, speed, beta, g)
     w_c = np.abs(w_e) if frequency == "encounter" else w
     f_exc = _excitation_at(arrays, beta, w, interpolation)  # (n, 6)
+    if speed != 0.0 and terms != "none":
+        if arrays.diffraction_force is None:
+            raise ValueError(
+                "database has no 'diffraction_force': the forward-speed terms of the scattered "
+                "flow need it (or pass speed_terms='none')"
+            )
+        f_d = _excitation_at(arrays, beta, w, interpolation, arrays.diffraction_force)
+        table = complex_mass_table(
+            arrays.omega, arrays.added_mass, arrays.radiation_damping, arrays.added_mass_zero
+        )
+        f_exc = f_exc - f_d + diffraction_at_speed(f_d, w, w_e, speed, table, terms, cutoff)
     a, b = _radiation_at(arrays, w_c, interpolation)  # (n, 6, 6)
 
     s = (-1j * w_e)[:, None, None]
-    k = s * s * m + c + s * b_extra + radiation_impedance(a, b, w_e, speed, terms)
+    k = s * s * m + c + s * b_extra + radiation_impedance(a, b, w_e, speed, terms, cutoff)
     idx = np.flatnonzero(mask)
     k_ff = k[:, idx[:, None], idx[None, :]]
     rao = np.zeros((len(w), N_DOF), dtype=complex)

@@ -20,7 +20,7 @@ from gymnasium.vector import AutoresetMode
 from scipy.linalg import expm
 
 from ship_gym.envs.base import BatchedTask, TaskEnv, TaskStep, TaskVectorEnv
-from ship_gym.envs.registration import ENTRIES, ENV_IDS
+from ship_gym.envs.registration import ENTRIES, REGISTERED_IDS
 
 
 class OscillatorTask(BatchedTask):
@@ -209,5 +209,5 @@ def test_registration_in_a_fresh_interpreter():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     n, steps, env_loaded = out.stdout.split()
-    assert int(n) == len(ENV_IDS) and env_loaded == "False"
+    assert int(n) == len(REGISTERED_IDS) and env_loaded == "False"
     assert int(steps) == next(e for e in ENTRIES if e.name == "RollOneDOF").max_episode_steps

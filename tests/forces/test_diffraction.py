@@ -45,7 +45,7 @@ def ctx_at(t, field, x=0.0, y=0.0, psi=0.0, speed=0.0, phasor=True):
     return ForceContext(
         t=t,
         eta=np.array([x, y, 0.0, 0.0, 0.0, psi]),
-        nu=np.zeros(6),
+        nu=np.array([speed, 0.0, 0.0, 0.0, 0.0, 0.0]),
         rotation=np.eye(3),
         forward_speed=speed,
         wave_phasor=field.phasor(t) if phasor else None,
@@ -164,15 +164,75 @@ def test_encounter_frequency_in_head_seas(db, table):
         expected = np.real(x[i, j] * 0.9 * np.exp(-1j * w_e * t))
         np.testing.assert_allclose(f, expected, rtol=1e-9, atol=1e-9 * np.abs(x[i, j]).max())
     np.testing.assert_allclose(model.omega_lookup, [w_e])
-    # the default, frequency="wave", looks X_D up at ω (the incident pattern), and the force
-    # still oscillates at ω_e: F = Re(X_D(ω, π) a e^{−iω_e t})
-    wave = Diffraction(db, field)
+    # frequency="wave" looks X_D up at ω (the incident pattern), and the force still oscillates
+    # at ω_e: F = Re(X_D(ω, π) a e^{−iω_e t}) without the speed correction (speed_terms="none";
+    # the correction is tested below)
+    wave = Diffraction(db, field, speed_terms="none")
     x_w = wave.diffraction_transfer(w, math.pi)
     for t in TIMES:
         f, _ = wave.evaluate(ctx_at(t, field, x=speed * t, speed=speed), np.zeros(0))
         expected = np.real(x_w * 0.9 * np.exp(-1j * w_e * t))
         np.testing.assert_allclose(f, expected, rtol=1e-9, atol=1e-9 * np.abs(x_w).max())
     np.testing.assert_allclose(wave.omega_lookup, [w])
+
+
+def test_speed_correction_is_the_relative_motion_form(db):
+    # forward_speed eq. (4)-(6), against the database's own A(ω), B(ω) (xarray interpolation,
+    # independent of the model's table): at U, F_D → (ω_e Z(ω_e))/(ω Z(ω)) F_D (Z₃₃ for surge,
+    # heave, pitch; Z₂₂ for sway, roll, yaw) and the pitch/yaw moments gain u Lᵀ P_D with
+    # P_D = Z(ω_e)/(iω Z(ω)) F_D (+heave on pitch, −sway on yaw). Z is interpolated linearly
+    # in A and in B/ω (the stated rule); tolerance 1e-9: the same arithmetic in another order.
+    speed, g, w, beta = 7.0, 9.81, 0.62, math.radians(150.0)
+    w_e = float(encounter_frequency(w, speed, beta, g))
+    field = WaveField.from_components([1.0], [w], [beta], [0.0], ramp_time=0.0, g=g)
+    plain = Diffraction(db, field, speed_terms="none")
+    model = Diffraction(db, field)
+    finite = db.sel(omega=db.omega[np.isfinite(db.omega) & (db.omega > 0)])
+
+    def z(dof: str, freq: float) -> complex:
+        grid = finite.omega.values
+        a = finite.added_mass.sel(radiating_dof=dof, influenced_dof=dof).values
+        b = finite.radiation_damping.sel(radiating_dof=dof, influenced_dof=dof).values
+        return complex(np.interp(freq, grid, a) + 1j * np.interp(freq, grid, b / grid))
+
+    ratio = {d: z(d, w_e) / z(d, w) for d in ("Heave", "Sway")}
+    x_d = plain.diffraction_transfer(w, beta)
+    for t in TIMES:
+        ctx = ctx_at(t, field, x=speed * t, speed=speed)
+        f0, _ = plain.evaluate(ctx, np.zeros(0))
+        f, _ = model.evaluate(ctx, np.zeros(0))
+        phasor = np.exp(-1j * w_e * t)
+        expected = np.empty(6)
+        for dof in range(6):
+            r = ratio["Heave"] if dof in (0, 2, 4) else ratio["Sway"]
+            expected[dof] = np.real(x_d[dof] * w_e / w * r * phasor)
+        p_heave = np.real(x_d[2] * ratio["Heave"] / (1j * w) * phasor)
+        p_sway = np.real(x_d[1] * ratio["Sway"] / (1j * w) * phasor)
+        expected[4] += speed * p_heave
+        expected[5] -= speed * p_sway
+        scale = np.abs(x_d).max()
+        np.testing.assert_allclose(f, expected, rtol=1e-9, atol=1e-9 * scale)
+        np.testing.assert_allclose(f0, np.real(x_d * phasor), rtol=1e-9, atol=1e-9 * scale)
+    # at rest nothing changes, bit for bit
+    at_rest = ctx_at(3.0, field)
+    np.testing.assert_array_equal(
+        model.evaluate(at_rest, np.zeros(0))[0], plain.evaluate(at_rest, np.zeros(0))[0]
+    )
+
+
+def test_speed_correction_follows_the_ship_surge_velocity(db):
+    # the cache is taken at the ship's own surge velocity u (not the engine's U), to first
+    # order between refreshes: a ship at u = U + 0.1 m/s equals a fresh model evaluated at u
+    # within the curvature term O(0.1²) (measured 1.0e-5 of the largest component)
+    field = regular(1.0, 0.55, math.radians(160.0))
+    drifting, fresh = Diffraction(db, field), Diffraction(db, field)
+    drifting.evaluate(ctx_at(0.0, field, speed=6.0), np.zeros(0))
+    ctx = ctx_at(2.0, field, x=12.2, speed=6.1)
+    f_a, _ = drifting.evaluate(ctx, np.zeros(0))
+    f_b, _ = fresh.evaluate(ctx, np.zeros(0))
+    np.testing.assert_allclose(f_a, f_b, rtol=0, atol=5e-5 * np.abs(f_b).max())
+    assert not np.allclose(f_b, Diffraction(db, field, speed_terms="none").evaluate(
+        ctx, np.zeros(0))[0], rtol=1e-3)  # fmt: skip
 
 
 def test_negative_encounter_frequency_uses_conjugate(db):

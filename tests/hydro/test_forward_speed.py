@@ -25,6 +25,8 @@ from ship_gym.forces.base import ForceContext
 from ship_gym.forces.radiation import RadiationMemory
 from ship_gym.hydro import as_arrays, load_database
 from ship_gym.hydro.forward_speed import (
+    default_speed_cutoff,
+    low_frequency_factor,
     momentum_rows,
     radiation_impedance,
     speed_corrected_coefficients,
@@ -203,3 +205,67 @@ def test_database_scale_coefficients_stay_finite_and_shift_as_expected():
     delta = b_u[0][HEAVE, PITCH] - b_u[0][PITCH, HEAVE]
     zero_speed = arr.radiation_damping[i, HEAVE, PITCH] - arr.radiation_damping[i, PITCH, HEAVE]
     assert delta - zero_speed == pytest.approx(2 * u * a33, rel=1e-12)
+
+
+@pytest.mark.parametrize("w", [0.04, 0.15, 0.8])
+def test_high_passed_moment_has_the_same_impedance(w):
+    """Eq. (5): with the cut-off, the model's two filter states make the Kirchhoff moment
+    H(ω) = s/(s + ω_c) times that without, exactly (harmonic steady state of the model's own
+    state equations; algebraic, 1e-9), and the solver's impedance applies the same H."""
+    db = load_database("s175")
+    cutoff = 0.06
+    plain = RadiationMemory(db, method="state_space")
+    rad = RadiationMemory(db, method="state_space", speed_cutoff=cutoff)
+    assert rad.n_states == plain.n_states + 2 and rad.n_filter_states == 2
+    ss = rad.state_space
+    u = 8.0
+    s = -1j * w
+    v_hat = np.zeros(6, complex)
+    v_hat[HEAVE], v_hat[PITCH], v_hat[SWAY] = 1.0, 0.02j, 0.3
+    z_mem = np.linalg.solve(s * np.eye(ss.order) - ss.A, ss.B @ v_hat)
+    # the filter states' steady state: m̄ = ω_c/(s + ω_c) m, m the unfiltered moment rows
+    m = rad.momentum_added_mass @ v_hat + rad.momentum_memory @ z_mem
+    z_hat = np.concatenate([z_mem, cutoff / (s + cutoff) * m])
+
+    def force(model: RadiationMemory, v: np.ndarray, z: np.ndarray) -> np.ndarray:
+        nu = v.copy()
+        nu[SURGE] += u
+        ctx = ForceContext(t=0.0, eta=np.zeros(6), nu=nu, rotation=np.eye(3), forward_speed=u)
+        return model.evaluate(ctx, z)[0]
+
+    f_cut = force(rad, v_hat.real, z_hat.real) + 1j * force(rad, v_hat.imag, z_hat.imag)
+    f_all = force(plain, v_hat.real, z_mem.real) + 1j * force(plain, v_hat.imag, z_mem.imag)
+    f_none = f_all.copy()
+    f_none[[PITCH, YAW]] -= u * m
+    expected = f_none.copy()
+    expected[[PITCH, YAW]] += u * m * s / (s + cutoff)
+    np.testing.assert_allclose(f_cut, expected, rtol=1e-9, atol=1e-9 * np.abs(expected).max())
+    # the state derivative of the filter is ω_c (m − m̄) = s m̄ in the steady state
+    nu = v_hat.real.copy()
+    nu[SURGE] += u
+    ctx = ForceContext(t=0.0, eta=np.zeros(6), nu=nu, rotation=np.eye(3), forward_speed=u)
+    zdot_re = rad.evaluate(ctx, z_hat.real)[1]
+    nu = v_hat.imag.copy()
+    nu[SURGE] += u
+    ctx = ForceContext(t=0.0, eta=np.zeros(6), nu=nu, rotation=np.eye(3), forward_speed=u)
+    zdot_im = rad.evaluate(ctx, z_hat.imag)[1]
+    zdot = zdot_re + 1j * zdot_im
+    np.testing.assert_allclose(zdot, s * z_hat, rtol=1e-9, atol=1e-9 * np.abs(s * z_hat).max())
+    # the solver's impedance: the moment part scaled by H as well
+    arr = as_arrays(db)
+    a, b = arr.added_mass[10], arr.radiation_damping[10]
+    r0 = radiation_impedance(a, b, [w], u, cutoff=0.0)
+    r_none = radiation_impedance(a, b, [w], u, speed_terms="none")
+    r_cut = radiation_impedance(a, b, [w], u, cutoff=cutoff)
+    h = s / (s + cutoff)
+    np.testing.assert_allclose(r_cut, r_none + h * (r0 - r_none), rtol=1e-12, atol=1e-3)
+
+
+def test_cutoff_and_filter_bad_values():
+    db = load_database("s175")
+    with pytest.raises(ValueError, match="speed_cutoff"):
+        RadiationMemory(db, speed_cutoff=-1.0)
+    with pytest.raises(ValueError, match="cutoff"):
+        radiation_impedance(np.eye(6), np.eye(6), [0.5], 3.0, cutoff=float("nan"))
+    assert low_frequency_factor([0.0, 1e9], 0.1) == pytest.approx([0.0, 1.0])
+    assert default_speed_cutoff(175.0, 9.81) == pytest.approx(0.25 * np.sqrt(9.81 / 175.0))

@@ -113,9 +113,13 @@ def _cases():
 
 @pytest.mark.parametrize(("index", "froude", "heading"), _cases())
 def test_linear_limit_at_speed_matches_frequency_domain(index, froude, heading):
-    # Measured (ω index 16; heave / roll / pitch): Fn 0.2 head 0.5 / – / 1.7 %, bow 0.5 / 0.8 /
-    # 1.5 %, beam 0.3 / – / –, quartering 0.8 / 0.6 / 0.7 %; Fn 0.3 head 0.5 / – / 1.2 %, bow
-    # 0.3 / 0.9 / 1.5 %, beam 0.4, quartering 0.8 / 1.0 / 0.5 %. Before the forward-speed
+    # Measured (ω index 16; heave / roll / pitch) before the diffraction's speed correction
+    # (issue #34): Fn 0.2 head 0.5 / – / 1.7 %, bow 0.5 / 0.8 / 1.5 %, beam 0.3 / – / –,
+    # quartering 0.8 / 0.6 / 0.7 %; Fn 0.3 head 0.5 / – / 1.2 %, bow 0.3 / 0.9 / 1.5 %, beam 0.4,
+    # quartering 0.8 / 1.0 / 0.5 %. With it, head-sea pitch 2.3 % at both speeds (λ/L 0.7: a
+    # small pitch, 0.2 k a, the difference of an excitation that the correction raised by
+    # ω_e/ω ≈ 1.6–1.9 in head seas; the FK quadrature of the time domain is the known
+    # remainder), hence 2.5 % for pitch in head seas, 2 % elsewhere. Before the forward-speed
     # linearisation the two differed by up to +115 % in heave at Fn 0.186 (issue #13).
     td, fd, w_e = linear_run_at_speed(index, heading, froude)
     w_roll = natural_frequency(s175().db, "Roll")
@@ -125,7 +129,8 @@ def test_linear_limit_at_speed_matches_frequency_domain(index, froude, heading):
             # check any more but one of the transient (measured: 15 % at 900 s, ω index 12)
             continue
         err = abs(td[dof] - fd[dof]) / abs(fd[dof])
-        assert err < 0.02, (
+        limit = 0.025 if (dof == PITCH and heading == 180 and froude > 0) else 0.02
+        assert err < limit, (
             f"DOF {dof}: |ξ_td − ξ_fd|/|ξ_fd| = {err:.2%} at ω_e = {w_e:.3f} rad/s "
             f"(|ξ_td/ξ_fd| = {abs(td[dof] / fd[dof]):.4f}, phase "
             f"{np.degrees(np.angle(td[dof] / fd[dof])):+.2f}°)"
@@ -277,3 +282,202 @@ def test_froude_krylov_mean_force_at_speed_against_snnm_motion_part(froude, wave
     )
     ratio = sigma / (float(motion[0]) * amplitude**2 / scale)
     assert 0.55 < ratio < 0.85, f"σ_FK = {sigma:.2f}, ratio to SNNM motion part {ratio:.2f}"
+
+
+# ------------------------------------------------------- every heading (issue #34)
+VERES_ALL = DATA / "s175_veres_mss_all_headings.csv"
+
+
+def veres_all_headings() -> np.ndarray:
+    """Rows (speed, Fn, β [deg], ω, λ/L, heave, roll/k, pitch/k) of the all-headings file."""
+    lines = VERES_ALL.read_text().splitlines()
+    rows = [line for line in lines if line and not line.startswith("#")][1:]
+    return np.array([[float(v) for v in row.split(",")] for row in rows])
+
+
+@pytest.mark.parametrize("speed", [7.71667, 10.2889], ids=["fn0.186", "fn0.248"])
+def test_every_heading_against_strip_theory(speed):
+    # The solver with the engine's speed terms (radiated and scattered momentum, the default
+    # high-pass) against VERES at β = 180, 150, 120, 90, 60, 30, 0° (heave–pitch free, λ/L >
+    # 0.5, ω and ω_e inside the database). Measured peaks, Fn 0.186 / 0.248: heave −4.4 … +0.7 %
+    # at every heading; pitch +14 / +10 % (head), +12 / +6 % (bow, 150°), −2 / −9 % (120°),
+    # ±1 % (60°), −2 / −6 % (30°), −2 / −7 % (following); beam-sea pitch 0.042 / 0.058 k a
+    # against VERES's 0.026 / 0.035 (before the scattered momentum: 1.04 / 1.49 k a, and 1.96 /
+    # 2.40 k a in quartering seas). Tolerances: heave 6 %, pitch 15 % (3-D BEM against 2-D
+    # strip theory; the head-sea pitch difference is discussed in docs/validation.md), beam
+    # pitch 0.08 k a absolute.
+    from ship_gym.hydro.forward_speed import default_speed_cutoff
+
+    raw = veres_all_headings()
+    s = s175()
+    w_min, w_max = float(s.arr.omega[0]), float(s.arr.omega[-1])
+    x_g = float(s.hull.mass.cog[0])
+    cutoff = default_speed_cutoff(LPP, G)
+    for heading in (180, 150, 120, 90, 60, 30, 0):
+        rows = raw[(np.abs(raw[:, 0] - speed) < 1e-3) & (raw[:, 2] == heading)]
+        omega = rows[:, 3]
+        w_e = encounter_frequency(omega, speed, np.radians(heading), G)
+        keep = (omega >= w_min) & (omega <= w_max) & (np.abs(w_e) <= w_max)
+        keep &= (np.abs(w_e) > 0.02) & (rows[:, 4] > 0.5)
+        omega, ref = omega[keep], rows[keep]
+        xi = response_amplitude_operator(
+            s.db, omega=omega, heading=np.radians(heading), forward_speed=speed,
+            free_dofs=("Heave", "Pitch"), speed_cutoff=cutoff,
+        )  # fmt: skip
+        heave = np.abs(xi[:, HEAVE] - x_g * xi[:, PITCH])
+        pitch = np.abs(xi[:, PITCH]) / (omega**2 / G)
+        assert heave.max() == pytest.approx(ref[:, 5].max(), rel=0.06), heading
+        if heading == 90:
+            assert pitch.max() < 0.08, pitch.max()
+        else:
+            assert pitch.max() == pytest.approx(ref[:, 7].max(), rel=0.15), heading
+
+
+@pytest.mark.parametrize("froude", [0.2, 0.3, 0.4])
+def test_beam_seas_at_speed_have_no_spurious_pitch(froude):
+    # Issue #34: S175, beam regular waves λ = 1.5 L. Before the scattered flow's momentum the
+    # Kirchhoff moment of the radiated momentum pitched the ship (pitch 0.30 / 0.45 / 0.56 k a
+    # at Fn 0.2 / 0.3 / 0.4, heave 1.04 / 0.85 / 0.71). Measured now (solver, heave–roll–pitch
+    # free): pitch 0.020 / 0.030 / 0.038 k a, heave 1.04 / 1.04 / 1.03; the time domain
+    # within 7 % of those small pitches and 0.3 % in heave (test above and below).
+    s = s175()
+    k = 2 * np.pi / (1.5 * LPP)
+    omega = np.sqrt(G * k)
+    xi = response_amplitude_operator(
+        s.db, omega=omega, heading=np.pi / 2, forward_speed=speed_of(froude),
+        free_dofs=("Heave", "Roll", "Pitch"),
+    )[0]  # fmt: skip
+    assert abs(xi[PITCH]) / k <= 0.05
+    assert abs(xi[HEAVE]) >= 0.95
+
+
+def test_beam_seas_at_speed_time_domain():
+    # the engine at Fn 0.3 in the same beam sea (surge at U, sway and yaw held): pitch ≤ 0.05
+    # k a and heave ≥ 0.95 (measured 0.028 and 1.035)
+    s = s175()
+    k = 2 * np.pi / (1.5 * LPP)
+    omega = np.sqrt(G * k)
+    field = wave_field_for(RegularWave(2 * AMPLITUDE, period=2 * np.pi / omega), np.pi / 2)
+    sim = Simulator(
+        s.hull, linear_forces(field), wave_field=field, dt=LINEAR_DT, free_dofs=HOLD_HORIZONTAL,
+        forward_speed=speed_of(0.3),
+    )  # fmt: skip
+    sim.reset(eta=s.base)
+    res = sim.run(300.0)
+    t_start = 300.0 - 8 * 2 * np.pi / omega
+    heave = fit_harmonic(res.t, res.eta[:, HEAVE] - s.base[HEAVE], omega, t_start) / AMPLITUDE
+    pitch = fit_harmonic(res.t, res.eta[:, PITCH] - s.base[PITCH], omega, t_start) / AMPLITUDE
+    assert abs(pitch) / k <= 0.05
+    assert abs(heave) >= 0.95
+
+
+def test_long_wave_limits_at_every_heading_and_speed():
+    # Issue #34: in long waves the ship follows the wave at any speed: heave → 1, pitch → k a
+    # |cos β|, roll → k a |sin β|, because the speed terms act on the motion relative to the
+    # incident flow (the radiated and the scattered momentum cancel). At the database's lowest
+    # frequency (λ = 200 L; surge, sway, heave, roll, pitch free, yaw held: without hull lift a
+    # free yaw drifts), Fn 0–0.4, β 0–180° every 15°, with the theory's terms at every frequency
+    # (speed_cutoff = 0): the speed changes heave by ≤ 0.2 % and pitch and roll by ≤ 2.5 % of k
+    # a (measured 0.01 % in heave, 2.5 % in beam-sea pitch — a 0.05 → 0.07 k a remainder of
+    # the zero-speed hull's own fore–aft asymmetry — and ≤ 0.6 % in roll). At rest the limits
+    # hold within 0.05 k a (roll within 0.06: 1.5 % of dynamic amplification (ω/ω_φ)² and,
+    # in oblique seas, the yaw held: 0.31 k a at 15° against sin 15° = 0.26).
+    s = s175()
+    omega = float(s.arr.omega[0])
+    k = omega**2 / G
+    free = ("Surge", "Sway", "Heave", "Roll", "Pitch")
+    for heading in range(0, 181, 15):
+        beta = np.radians(heading)
+        at_rest = response_amplitude_operator(
+            s.db, omega=omega, heading=beta, free_dofs=free
+        )[0]  # fmt: skip
+        assert abs(at_rest[HEAVE]) == pytest.approx(1.0, abs=0.002)
+        assert abs(at_rest[PITCH]) / k == pytest.approx(abs(np.cos(beta)), abs=0.05)
+        assert abs(at_rest[ROLL]) / k == pytest.approx(abs(np.sin(beta)), abs=0.06)
+        for froude in (0.1, 0.2, 0.3, 0.4):
+            xi = response_amplitude_operator(
+                s.db, omega=omega, heading=beta, forward_speed=speed_of(froude),
+                free_dofs=free, speed_cutoff=0.0,
+            )[0]  # fmt: skip
+            assert abs(xi[HEAVE]) == pytest.approx(abs(at_rest[HEAVE]), abs=0.002)
+            for dof in (ROLL, PITCH):
+                assert abs(xi[dof]) / k == pytest.approx(abs(at_rest[dof]) / k, abs=0.026), (
+                    heading, froude, dof,
+                )  # fmt: skip
+
+
+# ------------------------------------------------------------ the horizontal plane at speed
+@pytest.mark.parametrize("speed", [5.0, 10.0])
+def test_default_setup_at_speed_keeps_a_bounded_heading_in_calm_water(speed):
+    # Issue #34: ShipSetup(speed=U) frees all six DOFs; its manoeuvring model is now on by
+    # default at speed (the hull's lift), with the vertical-plane speed terms. From a 1° drift
+    # (sway velocity −U sin 1°) the heading settles (measured after 600 s: 10.3° at 5 m/s,
+    # 12.4° at 10 m/s, and still by < 0.5° per 100 s); before, the horizontal Munk moment
+    # turned the ship 112° / 241° in 100 s, and the vertical terms alone without the hull's
+    # lift 20° / 203° in 600 s.
+    from ship_gym.engine.ship import ShipSetup, build_simulator
+
+    setup = ShipSetup(speed=speed, integrator="holloway", dt=0.1)
+    assert setup.manoeuvring and setup.speed_terms == "vertical"
+    sim = build_simulator(setup)
+    nu = sim.nu.copy()
+    nu[1] = -speed * np.sin(np.radians(1.0))
+    sim.reset(eta=sim.eta.copy(), nu=nu)
+    res = sim.run(600.0)
+    yaw = np.degrees(res.eta[:, 5])
+    late = res.t >= 500.0
+    assert np.abs(yaw).max() < 15.0
+    assert np.ptp(yaw[late]) < 1.0  # settled
+    assert res.nu[-1, 0] == pytest.approx(speed, rel=0.01)
+
+
+def test_simulate_command_at_speed_keeps_its_heading(tmp_path, capsys):
+    # the tutorial command of issue #34 (it turned the S175 up to six times in 600 s and ended
+    # going astern): the autopilot now holds the heading (measured: max 0.4°, 6.99 m/s)
+    from ship_gym.cli import main
+
+    out = tmp_path / "sim.nc"
+    args = ["simulate", "--speed", "7", "--irregular", "2", "7", "--heading-deg", "45"]
+    args += ["--duration", "600", "--output", str(out), "--plot", ""]
+    assert main(args) == 0
+    import xarray as xr
+
+    with xr.open_dataset(out) as ds:
+        yaw = np.degrees(ds["eta"].values[:, 5])
+        surge = ds["nu"].values[:, 0]
+    assert np.abs(yaw - yaw[0]).max() < 3.0
+    assert surge[-1] == pytest.approx(7.0, rel=0.02)
+    assert "steering: autopilot" in capsys.readouterr().out
+
+
+# --------------------------------------------------------- capsize verdicts (issue #34)
+def test_capsize_map_cells_capsize_only_by_physics():
+    # The shipped map's cells (S175, KG 10.1 m, H 10.5 m, λ 1.5 L, autopilot, 600 s) whose
+    # capsizes came from the radiated momentum alone (the -v2 model, kept as
+    # diffraction_speed_terms=False): following seas at Fn 0.4 pitch-poled at 303 s, beam seas
+    # at Fn 0.3 capsized in roll at 189 s. With the speed terms on the relative motion neither
+    # capsizes (measured: max pitch 7.7° surf-riding at 20.1 m/s; beam-sea roll 11.7°, pitch
+    # 0.7°); the old model still does here, so the test can fail.
+    import dataclasses
+
+    import ship_gym.analysis.capsize_map as cm
+    from ship_gym.engine.ship import build_simulator
+
+    cfg = cm.CapsizeMapConfig(
+        hull_overrides={"kg": 10.1}, headings_deg=(0.0, 90.0), froude_numbers=(0.3, 0.4),
+        duration=600.0,
+    )  # fmt: skip
+    angle = np.radians(cm.capsize_angle_of("s175", {"kg": 10.1}))
+    for heading, froude, reason in ((0, 1, "pitch"), (1, 0, "roll")):
+        setup, sea, beta, _ = cm.cell_setup(cfg, cm.Cell(0, heading, froude, 0))
+        outcomes = {}
+        for label, changes in (("now", {}), ("v2", {"diffraction_speed_terms": False,
+                                                     "speed_cutoff": 0.0})):  # fmt: skip
+            sim = build_simulator(
+                dataclasses.replace(setup, **changes), sea, wave_heading=beta,
+                rng=np.random.default_rng(0),
+            )  # fmt: skip
+            outcomes[label], _ = cm.simulate_until_capsize(sim, 600.0, angle, record_every=5)
+        assert not outcomes["now"].capsized, (heading, froude)
+        assert outcomes["now"].max_abs_pitch_deg < 15.0
+        assert outcomes["v2"].capsized and outcomes["v2"].reason == reason
