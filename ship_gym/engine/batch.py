@@ -425,26 +425,22 @@ class BatchConstantRadiation(BatchForceModel):
 
 
 @nb.njit(cache=True)
-def _stale_headings(ships, psi, u, psi_ref, u_ref, tol, speed_tol, out):  # pragma: no cover
-    """The single-ship cache rule per row: no cache, |Δu| > speed_tol or |Δψ| > tol (wrapped)."""
+def _stale_headings(ships, psi, psi_ref, tol, out):  # pragma: no cover
+    """The single-ship cache rule per row: no cache or |Δψ| > tol (wrapped)."""
     for r in range(ships.shape[0]):
-        s = ships[r]
-        ref = psi_ref[s]
-        if np.isnan(ref) or abs(u[r] - u_ref[s]) > speed_tol:
-            out[r] = True
-        else:
-            out[r] = abs(wrap_angle_scalar(psi[r] - ref)) > tol
+        ref = psi_ref[ships[r]]
+        out[r] = np.isnan(ref) or abs(wrap_angle_scalar(psi[r] - ref)) > tol
 
 
 @nb.njit(cache=True)
-def _diffraction_rows(ships, psi, u, local, xd, dxd, dxu, ref, out):  # pragma: no cover
+def _diffraction_rows(ships, psi, u, local, xd, dxd, ref, out):  # pragma: no cover
     """:func:`ship_gym.forces.diffraction.diffraction_force` per row (X_D cached per ship;
     ``u`` the rows' surge velocities [m/s]; ``ref`` (N, 2) the caches' heading and speed)."""
     for r in range(ships.shape[0]):
         s = ships[r]
         for o in range(6):
             out[r, o] = 0.0
-        diffraction_force(psi[r], u[r], local[r], xd[s], dxd[s], dxu[s], ref[s], out[r])
+        diffraction_force(psi[r], u[r], local[r], xd[s], dxd[s], ref[s], out[r])
 
 
 class BatchDiffraction(BatchForceModel):
@@ -470,8 +466,6 @@ class BatchDiffraction(BatchForceModel):
         self.template = template
         self.tolerance = template.heading_tolerance
         """Heading change [rad] beyond which a ship's cache is refreshed."""
-        self.speed_tolerance = template.speed_tolerance
-        """Surge-velocity change [m/s] beyond which a ship's cache is refreshed."""
         self.encounter = template.frequency == "encounter"
         """Whether X_D is looked up at the encounter frequency."""
         table, beta = template.interpolation_table()
@@ -498,38 +492,41 @@ class BatchDiffraction(BatchForceModel):
         self._ref = np.full((n_ships, 2), np.nan)
         self._xd = np.zeros((n_ships, n_comp, CACHE_COLUMNS), dtype=complex)
         self._dxd = np.zeros((n_ships, n_comp, CACHE_COLUMNS), dtype=complex)
-        self._dxu = np.zeros((n_ships, n_comp, CACHE_COLUMNS), dtype=complex)
 
     @property
-    def caches(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-        """The per-ship caches (X_D with the moment factors (N, n_c, 8), their ∂/∂ψ and ∂/∂U,
-        and the reference heading [rad] and surge velocity [m/s] (N, 2)): the arrays
-        themselves, shared with the compiled backend."""
-        return self._xd, self._dxd, self._dxu, self._ref
+    def caches(self) -> tuple[NDArray, NDArray, NDArray]:
+        """The per-ship caches (X_D with the moment factors (N, n_c, 8), their ∂/∂ψ, and the
+        reference heading [rad] and the ship's speed U_s [m/s] (N, 2)): the arrays themselves,
+        shared with the compiled backend."""
+        return self._xd, self._dxd, self._ref
 
     def reset(self, ships: NDArray[np.int64], ctx: BatchContext) -> None:
-        self._ref[ships] = np.nan
+        # the speed of the linearisation: each ship's surge velocity at its reset
+        # (ship_gym.forces.diffraction, "Interpolation and caching")
+        self._ref[ships, 0] = np.nan
+        self._ref[ships, 1] = ctx.nu[:, SURGE]
 
-    def _refresh(
-        self, ships: NDArray[np.int64], psi: NDArray, u: NDArray, ctx: BatchContext, rows
-    ) -> None:
+    def _refresh(self, ships: NDArray[np.int64], psi: NDArray, ctx: BatchContext, rows) -> None:
         # the compiled backend's own refresh (one implementation of the look-up: a ship's cache
         # is bit-identical whichever path filled it, so a reset and replay reproduces a run)
         w = ctx.waves
         must_raise = self.template.above_range == "raise"
-        work = np.zeros((5, w.direction.shape[1], CACHE_COLUMNS), np.complex128)
+        work = np.zeros((3, w.direction.shape[1], CACHE_COLUMNS), np.complex128)
         count = np.zeros(1, np.int64)
-        for ship, row, heading, speed in zip(ships, rows, psi, u, strict=True):
+        for ship, row, heading in zip(ships, rows, psi, strict=True):
+            speed = self._ref[ship, 1]
+            if np.isnan(speed):  # never reset: the engine's speed
+                speed = float(ctx.forward_speed)
             args = (
                 *self.lookup, np.ascontiguousarray(w.direction[row], dtype=float),
                 np.ascontiguousarray(w.omega[row], dtype=float),
                 np.ascontiguousarray(w.wavenumber[row], dtype=float), self.encounter,
-                *self.speed_correction, float(self.template.heading_step),
-                float(self.template.speed_step), must_raise, work, count,
+                *self.speed_correction, float(self.template.heading_step), must_raise, work,
+                count,
             )  # fmt: skip
             if not refresh_diffraction_cache(
                 float(heading), float(speed), args, self._xd[ship], self._dxd[ship],
-                self._dxu[ship], self._ref[ship],
+                self._ref[ship],
             ):  # fmt: skip
                 # a component above ω_max with above_range="raise": the model's own error
                 self.template.heading_expansion(
@@ -542,16 +539,13 @@ class BatchDiffraction(BatchForceModel):
         psi = np.ascontiguousarray(ctx.eta[:, 5])
         u = np.ascontiguousarray(ctx.nu[:, SURGE])
         stale = np.empty(ctx.n, dtype=np.bool_)
-        _stale_headings(
-            ctx.ships, psi, u, self._ref[:, 0], self._ref[:, 1], self.tolerance,
-            self.speed_tolerance, stale,
-        )  # fmt: skip
+        _stale_headings(ctx.ships, psi, self._ref[:, 0], self.tolerance, stale)
         if stale.any():
             rows = np.flatnonzero(stale)
-            self._refresh(ctx.ships[rows], psi[rows], u[rows], ctx, rows)
+            self._refresh(ctx.ships[rows], psi[rows], ctx, rows)
         force = np.empty((ctx.n, 6))
         _diffraction_rows(
-            ctx.ships, psi, u, ctx.local_phasor, self._xd, self._dxd, self._dxu, self._ref, force
+            ctx.ships, psi, u, ctx.local_phasor, self._xd, self._dxd, self._ref, force
         )
         return force, _no_states(ctx.n)
 

@@ -161,12 +161,9 @@ class DiffractionRecord(NamedTuple):
     mass_grid: NDArray
     complex_mass: NDArray
     step: float
-    speed_step: float
     tolerance: float
-    speed_tolerance: float
     xd: NDArray
     dxd: NDArray
-    dxu: NDArray
     ref: NDArray
     work: NDArray
     refresh_count: NDArray
@@ -329,18 +326,17 @@ def _evaluate(
     if diff.enabled:
         psi = q[5]
         ref = diff.ref[s, 0]
-        stale = np.isnan(ref) or abs(v[0] - diff.ref[s, 1]) > diff.speed_tolerance
-        stale = stale or abs(wrap_angle_scalar(psi - ref)) > diff.tolerance
+        stale = np.isnan(ref) or abs(wrap_angle_scalar(psi - ref)) > diff.tolerance
         if stale:
             dtab = (
                 diff.table, diff.beta_ext, diff.omega_db, diff.direction[s], diff.omega[s],
                 diff.wavenumber[s], diff.encounter, diff.kirchhoff, diff.mass_grid,
-                diff.complex_mass, diff.step, diff.speed_step, False, diff.work[s],
-                diff.refresh_count[s : s + 1],
+                diff.complex_mass, diff.step, False, diff.work[s], diff.refresh_count[s : s + 1],
             )  # fmt: skip
-            refresh_diffraction_cache(
-                psi, v[0], dtab, diff.xd[s], diff.dxd[s], diff.dxu[s], diff.ref[s]
-            )
+            speed = diff.ref[s, 1]  # U_s: the ship's speed at its reset
+            if np.isnan(speed):
+                speed = rad.speed
+            refresh_diffraction_cache(psi, speed, dtab, diff.xd[s], diff.dxd[s], diff.ref[s])
     rot = np.empty((3, 3))
     total = np.empty(6)
     rigid_body_terms(
@@ -373,9 +369,7 @@ def _evaluate(
         total, zdot,
     )  # fmt: skip
     if diff.enabled:
-        diffraction_force(
-            q[5], v[0], local, diff.xd[s], diff.dxd[s], diff.dxu[s], diff.ref[s], total
-        )
+        diffraction_force(q[5], v[0], local, diff.xd[s], diff.dxd[s], diff.ref[s], total)
     p_roll = v[3]
     total[3] += -(prop.viscous_b1 * p_roll + prop.viscous_b2 * abs(p_roll) * p_roll)
     # control forces, in the order of the batch models (resistance, propeller, hull, surfaces)
@@ -654,25 +648,21 @@ class CompiledBackend:
         n_c = sim.n_components
         if diff is not None:
             tab = diff.lookup
-            enc, tol, speed_tol = diff.encounter, diff.tolerance, diff.speed_tolerance
-            h, hu = diff.template.heading_step, diff.template.speed_step
+            enc, h, tol = diff.encounter, diff.template.heading_step, diff.tolerance
             correction = diff.speed_correction
-            xd, dxd, dxu, ref = diff.caches
+            xd, dxd, ref = diff.caches
         else:
             tab = (np.zeros((2, 2, 6), np.complex128), np.arange(2.0), np.arange(1.0, 3.0))
-            enc, h, hu, tol, speed_tol = False, 1e-4, 0.01, 0.0, 0.0
+            enc, h, tol = False, 1e-4, 0.0
             correction = (np.zeros(4), np.arange(2.0), np.ones((2, 2), np.complex128))
             xd = np.zeros((n, n_c, CACHE_COLUMNS), np.complex128)
-            dxd, dxu, ref = xd.copy(), xd.copy(), np.full((n, 2), np.nan)
+            dxd, ref = xd.copy(), np.full((n, 2), np.nan)
         self._diff_static = (diff is not None, *tab)
-        self._diff_rest = (
-            enc, *correction, float(h), float(hu), float(tol), float(speed_tol), xd, dxd, dxu,
-            ref,
-        )  # fmt: skip
+        self._diff_rest = (enc, *correction, float(h), float(tol), xd, dxd, ref)
         # work arrays and refresh counters per ship: ships refresh concurrently in the
         # parallel loop
         self._diff_work = (
-            np.zeros((n, 5, n_c, CACHE_COLUMNS), np.complex128),
+            np.zeros((n, 3, n_c, CACHE_COLUMNS), np.complex128),
             np.zeros(n, np.int64),
         )
         visc = next((f for f in sim.forces if isinstance(f, BatchViscousRoll)), None)
@@ -1023,10 +1013,10 @@ def _loop_radiation(
 
 
 @nb.njit(cache=True)
-def _loop_diffraction(n, psi, u, local, xd, dxd, dxu, diff_ref):  # pragma: no cover
+def _loop_diffraction(n, psi, u, local, xd, dxd, diff_ref):  # pragma: no cover - compiled
     total = np.zeros(6)
     for _ in range(n):
-        diffraction_force(psi, u, local, xd, dxd, dxu, diff_ref, total)
+        diffraction_force(psi, u, local, xd, dxd, diff_ref, total)
     return total
 
 
@@ -1204,7 +1194,7 @@ class CompiledShip:
             ),
             "radiation": lambda n: _loop_radiation(n, v, self.z.copy(), *rad),
             "diffraction": lambda n: _loop_diffraction(
-                n, q[5], v[0], local, diff.xd[0], diff.dxd[0], diff.dxu[0], diff_ref
+                n, q[5], v[0], local, diff.xd[0], diff.dxd[0], diff_ref
             ),
             "rigid_body_viscous_roll": lambda n: _loop_rigid(
                 n, q, v, mass, weight, cog, held, p.viscous_b1, p.viscous_b2

@@ -78,14 +78,20 @@ Interpolation and caching
 The database headings are completed to the full circle by
 :func:`ship_gym.hydro.database.mirror_headings` (port–starboard symmetry) and extended
 periodically; X_D is interpolated bilinearly in (ω, β) on the real and imaginary parts (exact at
-database nodes). The per-component values X_D(ω'ⱼ, βⱼ) (taken to the ship's surge velocity u,
-:mod:`ship_gym.hydro.forward_speed` eq. 6) and their heading and speed derivatives are cached and
+database nodes). The per-component values X_D(ω'ⱼ, βⱼ) (taken to the ship's speed U_s,
+:mod:`ship_gym.hydro.forward_speed` eq. 6) and their heading derivatives are cached and
 recomputed only when the heading ψ has moved by more than ``heading_tolerance_deg`` (default
-0.5°) or u by more than ``speed_tolerance`` (default 0.25 m/s) since the last update; in
-between, X_D + (ψ − ψ_ref) ∂X_D/∂ψ + (u − u_ref) ∂X_D/∂U is used, so the force is continuous in
-ψ and u and a refresh changes it only by the O(Δ²) curvature term (a plain cache would jump by
-O(Δψ) and cap time-integration accuracy, as the convergence study showed). The folding of the
-phasors to O is exact at every evaluation (n complex exponentials).
+0.5°) since the last update; in between, X_D + (ψ − ψ_ref) ∂X_D/∂ψ is used, so the force is
+continuous in ψ and a refresh changes it only by the O(Δψ²) curvature term (a plain cache
+would jump by O(Δψ) and cap time-integration accuracy, as the convergence study showed).
+
+U_s, the speed of the linearisation, is the ship's surge velocity at its reset (the engine's U
+unless the ship was reset at another speed): the steady speed of the linear theory. The
+instantaneous surge velocity oscillates at the encounter frequency in steep waves; a
+correction taken at it would multiply two wave-frequency signals and create mean forces the
+theory does not have (measured: a mean heel that capsized the S175 in bow seas at Fn 0.4).
+Kirchhoff's moment itself takes the instantaneous u, as the radiation model's does. The
+folding of the phasors to O is exact at every evaluation (n complex exponentials).
 
 Heading coverage
 ----------------
@@ -249,10 +255,6 @@ class Diffraction(ForceModel):
     speed_cutoff : float
         ω_c [rad/s] of that moment's high-pass (:mod:`ship_gym.hydro.forward_speed` eq. 5);
         give the radiation model's.
-    speed_tolerance : float
-        Change of the ship's surge velocity [m/s] that triggers a recomputation of the cache
-        (the correction at speed follows the ship's own surge velocity u, to first order in
-        u − u_ref between refreshes).
 
     Attributes
     ----------
@@ -282,7 +284,6 @@ class Diffraction(ForceModel):
         max_heading_gap_deg: float = 90.0,
         speed_terms: SpeedTerms = "all",
         speed_cutoff: float = 0.0,
-        speed_tolerance: float = 0.25,
     ) -> None:
         self.speed_terms: SpeedTerms = check_speed_terms(speed_terms)
         self.speed_cutoff: float = check_speed_cutoff(speed_cutoff)
@@ -330,12 +331,6 @@ class Diffraction(ForceModel):
         self.above_range: str = above_range
         self.wave_field: WaveField = wave_field
         self._heading_tol = math.radians(tol)
-        speed_tol = float(speed_tolerance)
-        if not (math.isfinite(speed_tol) and speed_tol > 0.0):
-            raise ValueError(
-                f"speed_tolerance={speed_tolerance!r}; expected a finite speed > 0 [m/s]"
-            )
-        self._speed_tol = speed_tol
 
         ds = self._full_circle(database)
         finite, _, _ = split_frequencies(ds)
@@ -379,7 +374,6 @@ class Diffraction(ForceModel):
         self._n = w.n_components
         self._xd = np.zeros((self._n, CACHE_COLUMNS), dtype=complex)
         self._dxd = np.zeros((self._n, CACHE_COLUMNS), dtype=complex)
-        self._dxu = np.zeros((self._n, CACHE_COLUMNS), dtype=complex)
         self._psi_ref: float | None = None
         self._u_ref: float | None = None
         self.n_above_range: int = 0
@@ -480,21 +474,6 @@ class Diffraction(ForceModel):
         return out.reshape(*shape, N_DOF)
 
     @property
-    def speed_tolerance(self) -> float:
-        """Change of the ship's surge velocity [m/s] beyond which the cache is recomputed; ∞
-        when the cache does not depend on it (the wave-frequency look-up without the speed
-        correction)."""
-        if self.frequency == "wave" and self.kirchhoff[3] == 0.0:
-            return math.inf
-        return self._speed_tol
-
-    @property
-    def speed_step(self) -> float:
-        """Half-width [m/s] of the central difference ∂X_D/∂U: the speed tolerance, at least
-        0.01 m/s."""
-        return max(self._speed_tol, 0.01)
-
-    @property
     def heading_step(self) -> float:
         """Half-width h [rad] of the central difference ∂X_D/∂ψ ≈ (X_D(ψ + h) − X_D(ψ − h))/2h:
         the heading tolerance, at least 1e-4 rad."""
@@ -518,8 +497,9 @@ class Diffraction(ForceModel):
         wavenumber: np.ndarray,
         psi: np.ndarray | float,
         speed: float,
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """X_D(ω'ⱼ, βⱼ) at heading ψ and speed U and its derivatives, for any leading shape.
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """X_D(ω'ⱼ, βⱼ) at heading ψ and speed U and its heading derivative, for any leading
+        shape.
 
         Parameters
         ----------
@@ -532,17 +512,14 @@ class Diffraction(ForceModel):
 
         Returns
         -------
-        x, dx, du : numpy.ndarray
+        x, dx : numpy.ndarray
             (..., n, 8) X_D with the scattered momentum's moment factors (:data:`CACHE_COLUMNS`)
-            and their ∂/∂ψ and ∂/∂U (central differences over :attr:`heading_step` and
-            :attr:`speed_step`).
+            and their ∂/∂ψ (central difference over :attr:`heading_step`).
         omega_lookup, beta : numpy.ndarray
             (..., n) the frequencies and relative headings used.
         """
 
-        def at(
-            heading: np.ndarray | float, speed: float = speed
-        ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        def at(heading: np.ndarray | float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             beta = np.mod(np.asarray(direction, dtype=float) - heading, _TWO_PI)
             wave = np.broadcast_to(np.asarray(omega, dtype=float), beta.shape)
             w_enc = wave - np.asarray(wavenumber, dtype=float) * speed * np.cos(beta)
@@ -558,18 +535,17 @@ class Diffraction(ForceModel):
             return flat.reshape(table.shape), w, beta
 
         x, w, beta = at(psi)
-        h, hu = self.heading_step, self.speed_step
+        h = self.heading_step
         dx = (at(np.asarray(psi) + h)[0] - at(np.asarray(psi) - h)[0]) / (2.0 * h)
-        du = (at(psi, speed + hu)[0] - at(psi, speed - hu)[0]) / (2.0 * hu)
-        return x, dx, du, w, beta
+        return x, dx, w, beta
 
     def _update(self, psi: float, speed: float) -> None:
-        # X_D at the reference heading and speed and its derivatives: between refreshes the
-        # force follows X_D + (ψ − ψ_ref) ∂X_D/∂ψ + (u − u_ref) ∂X_D/∂U, so it is continuous in
-        # ψ and u; a refresh changes it only by the O(Δ²) curvature of the interpolated transfer
-        # functions (instead of an O(Δ) jump that would cap the integrators' accuracy)
+        # X_D at the reference heading and its heading derivative: between refreshes the force
+        # follows X_D + (ψ − ψ_ref) ∂X_D/∂ψ, so it is continuous in ψ; a refresh changes it only
+        # by the O(Δψ²) curvature of the interpolated transfer functions (instead of an O(Δψ)
+        # jump that would cap the integrators' accuracy)
         w = self.wave_field
-        self._xd, self._dxd, self._dxu, omega, beta = self.heading_expansion(
+        self._xd, self._dxd, omega, beta = self.heading_expansion(
             w.direction, w.omega, w.wavenumber, psi, speed
         )
         self.omega_lookup = omega
@@ -580,9 +556,10 @@ class Diffraction(ForceModel):
 
     # ------------------------------------------------------------------ protocol
     def reset(self, t0: float, ctx: ForceContext) -> None:
-        """Drop the cached per-component transfer functions."""
+        """Drop the cached per-component transfer functions; the ship's surge velocity in
+        ``ctx`` becomes the speed U_s of the correction (module docstring)."""
         self._psi_ref = None
-        self._u_ref = None
+        self._u_ref = float(np.asarray(ctx.nu, dtype=float)[SURGE])
 
     def evaluate(
         self, ctx: ForceContext, states: NDArray[np.float64]
@@ -620,18 +597,13 @@ class Diffraction(ForceModel):
             raise ValueError(f"ctx.eta has shape {eta.shape}; expected (6,)")
         psi = float(eta[YAW])
         u = float(np.asarray(ctx.nu, dtype=float)[SURGE])
-        if (
-            self._psi_ref is None
-            or self._u_ref is None
-            or abs(u - self._u_ref) > self.speed_tolerance
-            or abs(wrap_angle_scalar(psi - self._psi_ref)) > self._heading_tol
-        ):
-            self._update(psi, u)
-        assert self._psi_ref is not None and self._u_ref is not None  # set by _update
+        speed = u if self._u_ref is None else self._u_ref  # U_s: the speed at reset
+        if self._psi_ref is None or abs(wrap_angle_scalar(psi - self._psi_ref)) > self._heading_tol:
+            self._update(psi, speed)
+        assert self._psi_ref is not None  # set by _update
         folded = c * np.exp(-1j * (self._kx * eta[0] + self._ky * eta[1]))
         dpsi = wrap_angle_scalar(psi - self._psi_ref)
-        du = u - self._u_ref
-        columns = (folded.conj() @ (self._xd + dpsi * self._dxd + du * self._dxu)).real
+        columns = (folded.conj() @ (self._xd + dpsi * self._dxd)).real
         force = columns[:N_DOF].copy()
         force[PITCH] += u * columns[N_DOF]
         force[YAW] += u * columns[N_DOF + 1]
@@ -721,24 +693,20 @@ def transfer_at_heading(heading, speed, diff, out):  # pragma: no cover - compil
 
 
 @nb.njit(cache=True, nogil=True)
-def refresh_diffraction_cache(psi, speed, diff, xd, dxd, dxu, diff_ref):  # pragma: no cover
-    """Cache X_D, ∂X_D/∂ψ and ∂X_D/∂U (central differences over ±h, ±h_u) at heading ψ and
-    surge velocity ``speed``, as :meth:`Diffraction.heading_expansion`; returns False, leaving
-    the cache as it was, when the model must raise (``above_range="raise"`` and a component
-    above ω_max)."""
-    h, hu, must_raise, work, count = diff[10:]
+def refresh_diffraction_cache(psi, speed, diff, xd, dxd, diff_ref):  # pragma: no cover
+    """Cache X_D and ∂X_D/∂ψ (central difference over ±h) at heading ψ and the ship's speed U_s
+    ``speed``, as :meth:`Diffraction.heading_expansion`; returns False, leaving the cache as it
+    was, when the model must raise (``above_range="raise"`` and a component above ω_max)."""
+    h, must_raise, work, count = diff[10:]
     above = transfer_at_heading(psi, speed, diff, work[0])
     if above > 0 and must_raise:
         return False
     transfer_at_heading(psi + h, speed, diff, work[1])
     transfer_at_heading(psi - h, speed, diff, work[2])
-    transfer_at_heading(psi, speed + hu, diff, work[3])
-    transfer_at_heading(psi, speed - hu, diff, work[4])
     for j in range(xd.shape[0]):
         for o in range(xd.shape[1]):
             xd[j, o] = work[0, j, o]
             dxd[j, o] = (work[1, j, o] - work[2, j, o]) / (2.0 * h)
-            dxu[j, o] = (work[3, j, o] - work[4, j, o]) / (2.0 * hu)
     diff_ref[0] = psi
     diff_ref[1] = speed
     count[0] += 1
@@ -746,17 +714,16 @@ def refresh_diffraction_cache(psi, speed, diff, xd, dxd, dxu, diff_ref):  # prag
 
 
 @nb.njit(cache=True, nogil=True)
-def diffraction_force(psi, u, local, xd, dxd, dxu, diff_ref, total):  # pragma: no cover
-    """F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ + Δu ∂X_D,ⱼ/∂U), X_D cached at heading
-    diff_ref[0] and surge velocity diff_ref[1], and the scattered momentum's moment
-    u Lᵀ H P_D from the cache's columns 6–7 (u the surge velocity [m/s])."""
+def diffraction_force(psi, u, local, xd, dxd, diff_ref, total):  # pragma: no cover - compiled
+    """F_D = Re Σⱼ conj(c'ⱼ)(X_D,ⱼ + Δψ ∂X_D,ⱼ/∂ψ), X_D cached at heading diff_ref[0] (and the
+    ship's speed diff_ref[1]), and the scattered momentum's moment u Lᵀ H P_D from the cache's
+    columns 6–7 (u the surge velocity [m/s])."""
     dpsi = wrap_angle_scalar(psi - diff_ref[0])
-    du = u - diff_ref[1]
     for o in range(xd.shape[1]):
         s = 0.0
         for j in range(local.shape[0]):
             c = local[j]
-            x = xd[j, o] + dpsi * dxd[j, o] + du * dxu[j, o]
+            x = xd[j, o] + dpsi * dxd[j, o]
             s += c.real * x.real + c.imag * x.imag
         if o < N_DOF:
             total[o] += s
