@@ -7,9 +7,14 @@ ShipX/VERES strip theory (tests/data, from the Marine Systems Simulator); crosse
 time-domain engine's linear limit (regular waves of 0.1 m, state-space memory, nonlinear FK)
 at a few wave lengths. Heave at the centre of gravity (as VERES), pitch over the wave slope k a.
 
+A second figure (``--headings-out``) compares the solver with VERES at every heading at Fn 0.248
+(β = 150, 120, 90, 60, 30°; tests/data/s175_veres_mss_all_headings.csv) with the engine's speed
+terms and high-pass (issue #34).
+
 Usage::
 
     python scripts/forward_speed_raos.py [--out docs/forward_speed/forward_speed_raos.png]
+                                         [--headings-out docs/forward_speed/headings.png]
                                          [--no-time-domain]
 """
 
@@ -81,14 +86,70 @@ def time_domain(hull, db, base, omega: float, u: float) -> np.ndarray:
     return out
 
 
+def all_headings() -> np.ndarray:
+    """Rows (U, Fn, β [deg], ω, λ/L, heave, roll/k, pitch/k) of the all-headings VERES file."""
+    path = ROOT / "tests" / "data" / "s175_veres_mss_all_headings.csv"
+    with open(path) as fh:
+        lines = [line for line in fh if not line.startswith("#")]
+    return np.array([[float(v) for v in row] for row in list(csv.reader(lines))[1:]])
+
+
+def headings_figure(db, x_g: float, out: Path) -> None:
+    """Heave and pitch at Fn 0.248 in bow, beam and quartering seas: solver vs VERES."""
+    from ship_gym.hydro.forward_speed import default_speed_cutoff
+
+    raw = all_headings()
+    u = 10.2889
+    headings = (150, 120, 90, 60, 30)
+    w_max = float(as_arrays(db).omega[-1])
+    fig, axes = plt.subplots(2, len(headings), figsize=(14, 5.2), sharex=True)
+    lam = np.linspace(0.4, 3.0, 120)
+    omega = np.sqrt(2 * np.pi * G / (lam * LPP))
+    for col, beta in enumerate(headings):
+        b = np.radians(beta)
+        w_e = encounter_frequency(omega, u, b, G)
+        ok = (np.abs(w_e) <= w_max) & (np.abs(w_e) > 0.02)
+        xi = response_amplitude_operator(
+            db, omega=omega[ok], heading=b, forward_speed=u, free_dofs=("Heave", "Pitch"),
+            speed_cutoff=default_speed_cutoff(LPP, G),
+        )  # fmt: skip
+        h, p = heave_pitch(xi, omega[ok], x_g)
+        ref = raw[(np.abs(raw[:, 0] - u) < 1e-3) & (raw[:, 2] == beta)]
+        ref = ref[(ref[:, 4] >= 0.4) & (ref[:, 4] <= 3.0)]
+        for row, (ours, theirs, unit) in enumerate(
+            ((h, ref[:, 5], "heave at CG [m/m]"), (p, ref[:, 7], "pitch / (k ζₐ) [-]"))
+        ):
+            ax = axes[row, col]
+            ax.plot(lam[ok], ours, "-", color="tab:red", lw=1.6, label="ship_gym (solver)")
+            ax.plot(ref[:, 4], theirs, "o", color="tab:red", mfc="none", ms=5, label="VERES")
+            ax.grid(alpha=0.3)
+            if col == 0:
+                ax.set_ylabel(unit)
+            if row == 0:
+                ax.set_title(f"β = {beta}°")
+            else:
+                ax.set_xlabel("wave length λ/L [-]")
+    axes[0, 0].legend(fontsize=8)
+    fig.suptitle("S175 at Fn 0.248 in bow, beam and quartering seas: solver vs ShipX/VERES")
+    fig.tight_layout()
+    fig.savefig(out, dpi=150)
+    print(f"wrote {out}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument(
         "--out", type=Path, default=ROOT / "docs/forward_speed/forward_speed_raos.png"
     )
+    parser.add_argument(
+        "--headings-out",
+        type=Path,
+        default=ROOT / "docs/forward_speed/forward_speed_headings.png",
+    )
     parser.add_argument("--no-time-domain", action="store_true", help="skip the engine's points")
     args = parser.parse_args()
     args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.headings_out.parent.mkdir(parents=True, exist_ok=True)
 
     hull, db = load_hull("s175"), load_database("s175")
     arr = as_arrays(db)
@@ -149,6 +210,7 @@ def main() -> None:
     fig.tight_layout()
     fig.savefig(args.out, dpi=150)
     print(f"wrote {args.out}")
+    headings_figure(db, x_g, args.headings_out)
     for fn, pts in td_results.items():
         for lr, h, p in pts:
             print(f"Fn {fn} λ/L {lr:.2f}: engine heave {h:.3f}, pitch/k {p:.3f}")

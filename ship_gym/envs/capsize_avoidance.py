@@ -1,4 +1,4 @@
-"""``ship_gym/CapsizeAvoidance-v2``: make way in steep following seas without capsizing.
+"""``ship_gym/CapsizeAvoidance-v3``: make way in steep following seas without capsizing.
 
 Matusiak's capsize scenario (Matusiak 2003, "Importance of memory effect for capsizing
 prediction": regular waves λ = 1.5 L, amplitude 4.5 m for L = 150 m, Fn 0.2–0.4, headings 0–45°
@@ -6,10 +6,14 @@ off following seas; the A-1 container ship capsized at Fn 0.4, 30°) on the S175
 length (amplitude 5.25 m, H ≈ 10.5 m, λ ≈ 262 m). The heading autopilot steers; the agent
 changes its set-point and the engine telegraph, seeing the sea state as the officer of the watch
 estimates it (wave period, λ/L, H/L) and the roll period of the loading — what the IMO guidance
-to the master (MSC.1/Circ.1228) asks him to watch. Kept on course and speed (zero action) the ship
-capsizes in about a third of the default episodes (35 % [24 %, 48 %], Wilson 95 %, 60 episodes
-of 750 s, seeds 5000–5059): the task holds a real dilemma between progress and survival. The
-task (:class:`CapsizeAvoidanceTask`) runs on :class:`ship_gym.envs.env_task.ShipEnvTask`.
+to the master (MSC.1/Circ.1228) asks him to watch. On ``-v2`` (the forward-speed model of
+issue #13), kept on course and speed (zero action) the ship capsized in about a third of the
+default episodes (35 % [24 %, 48 %], Wilson 95 %, 60 episodes of 750 s, seeds 5000–5059; 16/60
+on seeds 10000–10059). On ``-v3``, with the speed terms on the motion relative to the waves, it
+capsizes in none of the 60 episodes of seeds 10000–10059 (0 % [0 %, 6.0 %]): those capsizes came
+from the spurious moment, and at these defaults the task holds no dilemma between progress and
+survival (issue #31 builds the heavy-weather task that does). The task
+(:class:`CapsizeAvoidanceTask`) runs on :class:`ship_gym.envs.env_task.ShipEnvTask`.
 """
 
 from __future__ import annotations
