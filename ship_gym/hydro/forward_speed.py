@@ -80,18 +80,17 @@ Excitation: the scattered flow's momentum
 The Froude–Krylov force is integrated over the hull at its true position in the time domain,
 so it sees the incident wave's spatial pattern k(ω) at the encounter timing; its linear value is
 the database's ``Froude_Krylov_force`` at the **wave** frequency ω. It has no speed term: the
-incident flow is not carried by the body. The diffraction force is the zero-speed database value
-at the wave frequency ω (the hull sees the wave pattern k(ω); a look-up at ω_e would impose the
-pattern k(ω_e) = ω_e²/g, wrong by a factor (ω_e/ω)² — 2.6 in head seas at Fn 0.25 near the heave
-resonance), oscillating at ω_e.
+incident flow is not carried by the body. The diffraction force is read from the zero-speed
+database at the wave frequency ω (the hull sees the wave pattern k(ω); a look-up at ω_e would
+impose the pattern k(ω_e) = ω_e²/g, wrong by a factor (ω_e/ω)² — 2.6 in head seas at Fn 0.25
+near the heave resonance) and oscillates at ω_e.
 
 The scattered flow carries momentum too, and Kirchhoff's moment acts on it exactly as on the
 radiated flow's. Written as the force of a momentum, F_D = −Ṗ_D, the zero-speed diffraction
-force gives P_D = F_D / (iω) per unit amplitude (capytaine's convention, ω the wave frequency:
-the momentum the hull's scattering of the wave pattern k(ω) sets up), and the excitation at
+force gives P_D = F_D / (iω) per unit amplitude (capytaine's convention), and the excitation at
 speed is
 
-    F_exc = F_FK + F_D + U H(ω_e) Lᵀ P_D,      P_D = F_D / (iω) at zero speed,           (4)
+    F_exc = F_FK + F_D + U H(ω_e) Lᵀ P_D,      P_D = F_D / (iω) at zero speed.           (4)
 
 The diffraction force and its momentum at speed. In Salvesen, Tuck & Faltinsen's theory the
 sectional diffraction force at speed is the sectional complex mass at the encounter frequency,
@@ -110,13 +109,14 @@ This is Salvesen, Tuck & Faltinsen's diffraction speed term (their −U/(iω_e) 
 +U/(iω_e) h₂ on yaw, h_j their sectional diffraction force at speed, integrated along the hull):
 their h_j is the sectional complex mass at ω_e, a + i b/ω_e, times the incident flow's normal
 acceleration in the ship (∝ ω ω_e), so U h_j/(iω_e) is U times that complex mass applied to the
-incident flow's velocity (∝ ω) — the scattered momentum, which (4) takes from the zero-speed BEM
-at ω. In long waves the two momenta cancel — P + P_D = [A + B/s] (ν_p − v_incident) → 0 for a
-ship that follows the wave — so **the speed terms act on the motion relative to the incident
-flow**: heave → 1, pitch → the projected wave slope and roll → the beam wave slope at every
-heading and speed (tested). Without (4) the radiation moment U P_heave of a ship heaving with a
-beam sea pitches it (S175, λ = 1.5 L, Fn 0.3: pitch 0.45 k a, against ≈ 0.01 k a in strip
-theory). P_D stays bounded as ω_e → 0 (it is divided by ω, not ω_e).
+incident flow's velocity (∝ ω) — the scattered momentum, which (6) takes from the zero-speed BEM
+with the hull's complex-mass ratio. In long waves the two momenta cancel — P + P_D = [A + B/s]
+(ν_p − v_incident) → 0 for a ship that follows the wave — so **the speed terms act on the motion
+relative to the incident flow**: heave → 1, pitch → the projected wave slope and roll → the beam
+wave slope at every heading and speed (tested). Without (4) the radiation moment U P_heave of a
+ship heaving with a beam sea pitches it (S175, λ = 1.5 L, Fn 0.3: pitch 0.45 k a; with it 0.03 k
+a, VERES strip theory 0.026–0.035 k a at Fn 0.19–0.25). P_D stays bounded as ω_e → 0 (it is
+divided by ω, not ω_e).
 
 Low encounter frequency: the steady flow owns the steady momentum
 ------------------------------------------------------------------
