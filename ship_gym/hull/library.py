@@ -351,10 +351,17 @@ def wigley(
     n_above: int = 4,
     rho: float = RHO_SEAWATER,
     g: float = GRAVITY,
+    a2: float = 0.0,
 ) -> Hull:
-    """The Wigley hull y = (B/2)(1 − (2x/L)²)(1 − (z/T)²) below the waterline, wall-sided above.
+    """The Wigley hull y = (B/2)(1 − ξ²)(1 + a₂ ξ²)(1 − (z/T)²), ξ = 2x/L, below the waterline,
+    wall-sided above.
 
-    Closed forms: displaced volume (4/9) L B T, waterplane area (2/3) L B.
+    a₂ = 0 is the classic parabolic Wigley hull; a₂ = 0.2 with L/B = 10, B/T = 1.6 is Journée's
+    Wigley III (Journée 1992, Delft University of Technology, Ship Hydromechanics Laboratory
+    report 909: L 3 m, B 0.3 m, T 0.1875 m, ∇ 0.0780 m³, C_B 0.462, k_yy 0.25 L).
+
+    Closed forms: displaced volume (2/3) T B (L/2) (4/3 + 4 a₂/15) ((4/9) L B T at a₂ = 0),
+    waterplane area B (L/2) (4/3 + 4 a₂/15), KB = 5 T/8.
 
     Parameters
     ----------
@@ -362,12 +369,18 @@ def wigley(
         Dimensions [m].
     kg : float, optional
         Height of G above the keel [m]; default KB + BM − 0.1 B (a stable ship).
+    a2 : float
+        Coefficient of the waterline's fullness term (1 + a₂ ξ²) [-], in [0, 1].
     """
+    a2 = float(a2)
+    if not (np.isfinite(a2) and 0.0 <= a2 <= 1.0):
+        raise ValueError(f"a2={a2!r}; expected a fullness coefficient in [0, 1]")
     xs = np.linspace(-length / 2, length / 2, n_stations)
     zeta = np.linspace(0.0, 1.0, 41)  # fraction of draught below the waterline
     stations = []
     for x in xs:
-        hb = 0.5 * beam * (1 - (2 * x / length) ** 2) * (1 - zeta**2)
+        xi2 = (2 * x / length) ** 2
+        hb = 0.5 * beam * (1 - xi2) * (1 + a2 * xi2) * (1 - zeta**2)
         height = draught * (1 - zeta)  # above keel
         stations.append(Station(float(x), hb[::-1], height[::-1]))
     mesh = hull_mesh_from_stations(
@@ -380,10 +393,14 @@ def wigley(
         n_deck=2,
         name="wigley",
     )
-    volume = 4.0 / 9.0 * length * beam * draught
+    waterline = 4.0 / 3.0 + 4.0 * a2 / 15.0  # ∫₋₁¹ (1 − ξ²)(1 + a₂ ξ²) dξ
+    volume = 2.0 / 3.0 * draught * beam * length / 2.0 * waterline
     # KB: ∫∫ 2y (T − z) / V with the separable profile → KB = T − (T·∫ζ(1−ζ²)/∫(1−ζ²)) = 5T/8
     kb = 5.0 * draught / 8.0
-    it = beam**3 / 12.0 * length * (16.0 / 35.0)  # ∫ (2y)³/12 dx with y ∝ (1 − ξ²)
+    # ∫ (2y)³/12 dx = B³/12 (L/2) ∫₋₁¹ [(1 − ξ²)(1 + a₂ ξ²)]³ dξ (Gauss–Legendre, exact)
+    nodes, weights = np.polynomial.legendre.leggauss(8)
+    cube = float(np.sum(weights * ((1 - nodes**2) * (1 + a2 * nodes**2)) ** 3))
+    it = beam**3 / 12.0 * length / 2.0 * cube
     bm = it / volume
     kg_ = kb + bm - 0.1 * beam if kg is None else float(kg)
     mass = MassProperties.from_radii_of_gyration(
@@ -393,7 +410,7 @@ def wigley(
     )
     ref = {
         "volume_m3": volume,
-        "waterplane_area_m2": 2.0 / 3.0 * length * beam,
+        "waterplane_area_m2": beam * length / 2.0 * waterline,
         "KB_m": kb,
         "BMt_m": bm,
     }

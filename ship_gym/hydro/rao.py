@@ -243,6 +243,34 @@ def _excitation_at(
     return re + 1j * im
 
 
+def _excitation_at_speed(
+    arrays: HydroArrays,
+    beta: float,
+    omega: np.ndarray,
+    omega_e: np.ndarray,
+    speed: float,
+    terms: SpeedTerms,
+    cutoff: float,
+    method: Interpolation,
+) -> np.ndarray:
+    """F_FK + F_D at speed (n, 6): the diffraction taken to speed with its Kirchhoff moment
+    (:mod:`ship_gym.hydro.forward_speed` eq. 4 and 6); the zero-speed excitation at U = 0 or
+    ``terms="none"``."""
+    f_exc = _excitation_at(arrays, beta, omega, method)  # (n, 6)
+    if speed == 0.0 or terms == "none":
+        return f_exc
+    if arrays.diffraction_force is None:
+        raise ValueError(
+            "database has no 'diffraction_force': the forward-speed terms of the scattered flow "
+            "need it (or pass speed_terms='none')"
+        )
+    f_d = _excitation_at(arrays, beta, omega, method, arrays.diffraction_force)
+    table = complex_mass_table(
+        arrays.omega, arrays.added_mass, arrays.radiation_damping, arrays.added_mass_zero
+    )
+    return f_exc - f_d + diffraction_at_speed(f_d, omega, omega_e, speed, table, terms, cutoff)
+
+
 def _radiation_at(arrays: HydroArrays, omega_c: np.ndarray, method: Interpolation):
     w_grid = arrays.omega
     a, b = arrays.added_mass, arrays.radiation_damping
@@ -364,18 +392,7 @@ def response_amplitude_operator(
     cutoff = check_speed_cutoff(speed_cutoff)
     w_e = encounter_frequency(w, speed, beta, g)
     w_c = np.abs(w_e) if frequency == "encounter" else w
-    f_exc = _excitation_at(arrays, beta, w, interpolation)  # (n, 6)
-    if speed != 0.0 and terms != "none":
-        if arrays.diffraction_force is None:
-            raise ValueError(
-                "database has no 'diffraction_force': the forward-speed terms of the scattered "
-                "flow need it (or pass speed_terms='none')"
-            )
-        f_d = _excitation_at(arrays, beta, w, interpolation, arrays.diffraction_force)
-        table = complex_mass_table(
-            arrays.omega, arrays.added_mass, arrays.radiation_damping, arrays.added_mass_zero
-        )
-        f_exc = f_exc - f_d + diffraction_at_speed(f_d, w, w_e, speed, table, terms, cutoff)
+    f_exc = _excitation_at_speed(arrays, beta, w, w_e, speed, terms, cutoff, interpolation)
     a, b = _radiation_at(arrays, w_c, interpolation)  # (n, 6, 6)
 
     s = (-1j * w_e)[:, None, None]
@@ -394,6 +411,53 @@ def response_amplitude_operator(
     if not np.all(np.isfinite(rao)):
         raise ValueError("non-finite response: the equations of motion are singular")
     return rao
+
+
+def excitation_force(
+    database: xr.Dataset,
+    *,
+    omega: ArrayLike,
+    heading: float,
+    forward_speed: float = 0.0,
+    speed_terms: SpeedTerms = "all",
+    speed_cutoff: float = 0.0,
+    interpolation: Interpolation = "linear",
+) -> np.ndarray:
+    """Wave excitation on the restrained ship at speed, per unit wave amplitude: F_FK + F_D with
+    the diffraction in relative-motion form and the scattered flow's Kirchhoff moment
+    (:mod:`ship_gym.hydro.forward_speed` eq. 4 and 6) — the right-hand side of eq. (2).
+
+    Parameters
+    ----------
+    database : xarray.Dataset
+        Zero-speed database with ``excitation_force`` and ``diffraction_force``.
+    omega : array_like
+        Wave frequencies ω > 0 [rad/s].
+    heading : float
+        Wave heading β [rad].
+    forward_speed, speed_terms, speed_cutoff, interpolation
+        As :func:`response_amplitude_operator`.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n, 6) complex [N/m, N·m/m], capytaine's time convention, the crest at O at t = 0.
+    """
+    if not isinstance(database, xr.Dataset):
+        raise ValueError(f"database must be an xarray.Dataset; got {type(database).__name__}")
+    if interpolation not in ("linear", "cubic"):
+        raise ValueError(f"interpolation must be 'linear' or 'cubic'; got {interpolation!r}")
+    terms = check_speed_terms(speed_terms)
+    if "excitation_force" not in database:
+        raise ValueError("database has no 'excitation_force'; expected a diffraction database")
+    w = _frequencies(omega)
+    beta = float(np.mod(_scalar("heading", heading, "rad"), _TWO_PI))
+    speed = _scalar("forward_speed", forward_speed, "m/s")
+    cutoff = check_speed_cutoff(speed_cutoff)
+    g = float(database.attrs.get("g", GRAVITY))
+    arrays = as_arrays(_headings_for(database, beta))
+    w_e = encounter_frequency(w, speed, beta, g)
+    return _excitation_at_speed(arrays, beta, w, w_e, speed, terms, cutoff, interpolation)
 
 
 def natural_frequency(
