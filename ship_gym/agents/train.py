@@ -44,19 +44,22 @@ Configuration (a TOML file, or the name of one shipped in :mod:`ship_gym.agents.
                                   #   or = "fins": that baseline's effort (measured first)
     lagrangian_lr = 0.05          # multiplier step; also lambda_init = 0, lambda_max = 100
 
-A relative ``output_dir`` (or ``--output``) is taken from the working directory, whether the
-config is a file or a shipped name. The run directory receives ``model.zip``, ``config.toml`` (a
-copy of the configuration actually used, with command-line overrides), ``vecnormalize.pkl`` when
-``normalize`` is on, the tensorboard logs, ``progress.csv`` (the learning curve: after every
-rollout the time steps, wall time, mean return, length and cost of the last 100 episodes, and
-λ) and ``summary.json`` (time steps, wall time, steps/s, last mean episode return and cost,
-final λ), and ``residual.json`` (the baseline with all its gains) for a residual run. With a
-``[validation]`` table it also gets ``validation.csv`` (the deterministic policy's evaluations)
-and, with ``keep_best``, ``model.zip`` (and ``vecnormalize.pkl``) is the best evaluated
-checkpoint, ``final_model.zip`` (``final_vecnormalize.pkl``) the last. With a
-``[safe]`` table the reward is shaped by a Lagrange multiplier on the cost or on the
-action's mean square (:mod:`ship_gym.agents.lagrangian`), and the validation chooses among the
-checkpoints within the budget. All files are written atomically.
+A relative ``output_dir`` (or ``--output``) is taken from the working directory, whether the config
+is a file or a shipped name. The run directory receives ``model.zip``, ``config.toml`` (a copy of
+the configuration actually used, with command-line overrides), ``vecnormalize.npz`` (the observation
+statistics as plain arrays, read without pickle) when ``normalize`` is on, the tensorboard logs,
+``progress.csv`` (the learning curve: after every rollout the time steps, wall time, mean return,
+length and cost of the last 100 episodes, and λ) and ``summary.json`` (time steps, wall time,
+steps/s, last mean episode return and cost, final λ), and ``residual.json`` (the baseline with all
+its gains) for a residual run. With a ``[validation]`` table it also gets ``validation.csv`` (the
+deterministic policy's evaluations) and, with ``keep_best``, ``model.zip`` (and
+``vecnormalize.npz``) is the best evaluated checkpoint, ``final_model.zip``
+(``final_vecnormalize.npz``) the last. With a ``[safe]`` table the reward is shaped by a Lagrange
+multiplier on the cost or on the action's mean square (:mod:`ship_gym.agents.lagrangian`), and the
+validation chooses among the checkpoints within the budget. All files are written atomically. The
+SHA-256 of every model saved is recorded in this installation's trust folder
+(:func:`ship_gym.envs.policy_trust.record_trusted_policy`), so that loading it needs no opt-in
+(loading an SB3 model runs code from the file: ``docs/security.md``).
 :func:`ship_gym.agents.residual.load_agent_policy` reads the directory back.
 """
 
@@ -368,6 +371,8 @@ def train(config: TrainConfig) -> Path:
     import stable_baselines3
     from stable_baselines3.common.vec_env import VecNormalize
 
+    from ship_gym.envs.policy_trust import record_trusted_policy
+    from ship_gym.envs.saved_policies import save_obs_normalizer
     from ship_gym.io_utils import atomic_write, atomic_write_text
 
     if config.torch_threads is not None:
@@ -379,7 +384,9 @@ def train(config: TrainConfig) -> Path:
     # a summary marks a finished run (the benchmark reuses such runs): an earlier run's must not
     # stand beside this run's config while this one trains
     (out / "summary.json").unlink(missing_ok=True)
-    for stale in VALIDATION_RUN_FILES:  # nor an earlier run's checkpoints and evaluations
+    stale_statistics = [f"{p}vecnormalize.{x}" for p in ("", BEST, FINAL) for x in ("npz", "pkl")]
+    for stale in (*VALIDATION_RUN_FILES, *stale_statistics):
+        # nor an earlier run's checkpoints, evaluations and observation statistics
         (out / stale).unlink(missing_ok=True)
     atomic_write_text(out / "config.toml", dump_toml(config.raw))
     validation_limit = None
@@ -446,11 +453,14 @@ def train(config: TrainConfig) -> Path:
         model_file, normalizer_file = checkpoint_files(FINAL if selected else "")
         atomic_write(out / model_file, lambda p: model.save(p))
         if isinstance(venv, VecNormalize):
-            atomic_write(out / normalizer_file, lambda p: venv.save(str(p)))
+            atomic_write(out / normalizer_file, lambda p: save_obs_normalizer(venv, p))
         if selected:  # the best checkpoint becomes the run's model
             for best, run in zip(checkpoint_files(BEST), checkpoint_files(""), strict=True):
                 if (out / best).is_file():
                     (out / best).replace(out / run)
+        for saved in {checkpoint_files("")[0], model_file}:  # this installation's own models
+            if (out / saved).is_file():
+                record_trusted_policy(out / saved)
         atomic_write_text(out / "progress.csv", curve.csv())
         episodes = list(model.ep_info_buffer or [])
         summary = {

@@ -70,7 +70,7 @@ import os
 import time
 import tomllib
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
 from typing import Any, Literal
@@ -675,6 +675,12 @@ class CampaignTask:
     duration_s, dt_s, integrator, radiation, capsize_angle_deg, controller, record_every,
     database
         The campaign's run settings (:class:`CampaignSpec`).
+    policy_sha256 : str
+        For ``controller = "policy:…"``: the SHA-256 of its ``model.zip`` checked in the driver
+        (:func:`~ship_gym.analysis.policy_cells.check_policy_controller`); a worker loads only
+        that file.
+    trust_policy : bool
+        The user's opt-in (``--trust-policy``) to load a policy neither trained here nor shipped.
     """
 
     task_id: str
@@ -687,10 +693,15 @@ class CampaignTask:
     controller: str
     record_every: int
     database: str
+    policy_sha256: str = ""
+    trust_policy: bool = False
 
 
-def tasks(spec: CampaignSpec, pending: Sequence[CampaignCell]) -> list[CampaignTask]:
-    """Group pending cells by all but the seed and cut the groups into ``batch_seeds`` chunks."""
+def tasks(
+    spec: CampaignSpec, pending: Sequence[CampaignCell], *, trust_policy: bool = False
+) -> list[CampaignTask]:
+    """Group pending cells by all but the seed and cut the groups into ``batch_seeds`` chunks
+    (``trust_policy``: the user's opt-in carried to the workers, :class:`CampaignTask`)."""
     groups: dict[tuple, list[CampaignCell]] = {}
     for c in pending:
         groups.setdefault(c.group, []).append(c)
@@ -713,6 +724,8 @@ def tasks(spec: CampaignSpec, pending: Sequence[CampaignCell]) -> list[CampaignT
                     ),
                     record_every=spec.record_every,
                     database=spec.database,
+                    policy_sha256=spec.policy.model_sha256 if spec.policy is not None else "",
+                    trust_policy=trust_policy,
                 )
             )
     return out
@@ -828,6 +841,8 @@ def _run_policy_task(
     controller = read_policy_controller(
         task.controller[len(POLICY_PREFIX) :], field=f"controller = {task.controller!r}"
     )
+    # the file the driver checked, not whatever is there now
+    controller = replace(controller, model_sha256=task.policy_sha256)
     hull = hull_of(first.ship_path, **loading)
     return run_policy_cells(
         controller,
@@ -841,6 +856,7 @@ def _run_policy_task(
         dt_s=task.dt_s,
         integrator=task.integrator,
         capsize_angle_deg=angle,
+        trusted=task.trust_policy,
     )
 
 
@@ -923,8 +939,14 @@ def run_campaign(
     workers: int = 1,
     address: str | None = None,
     progress: bool = True,
+    trust_policy: bool = False,
 ) -> CampaignResult:
     """Run (or resume, or extend) a campaign into a store folder.
+
+    A ``controller = "policy:…"`` is checked first: a model neither trained by this
+    installation nor shipped is refused unless ``trust_policy`` (loading an SB3 model runs code
+    from the file; :func:`~ship_gym.analysis.policy_cells.check_policy_controller`), and every
+    worker loads only the file of the SHA-256 checked here.
 
     Cells already in the store (by id) are skipped; the others are grouped into tasks
     (:func:`tasks`) and run by the executor, every finished task written as one shard
@@ -945,6 +967,8 @@ def run_campaign(
         Ray cluster address (``"ray"``).
     progress : bool
         tqdm progress bar over cells.
+    trust_policy : bool
+        The user's opt-in to load a policy neither trained here nor shipped.
     """
     from ship_gym.analysis.campaign_store import _pyarrow, store_cell_ids, write_shard
 
@@ -955,7 +979,14 @@ def run_campaign(
     all_cells = cells(spec)
     done = store_cell_ids(store)
     pending = [c for c in all_cells if c.cell_id not in done]
-    todo = tasks(spec, pending)
+    if spec.policy is not None and pending:
+        from ship_gym.analysis.policy_cells import check_policy_controller
+
+        try:
+            check_policy_controller(spec.policy, trusted=trust_policy)
+        except ValueError as exc:
+            raise CampaignError(f"controller = {spec.controller!r}: {exc}") from None
+    todo = tasks(spec, pending, trust_policy=trust_policy)
     own = isinstance(executor, str)
     ex: Executor = (
         make_campaign_executor(executor, workers=workers, address=address)

@@ -43,6 +43,12 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     r.add_argument("--workers", type=n_jobs, default=1, help="parallel workers")
     r.add_argument("--address", default=None, help="Ray cluster address (--executor ray)")
     r.add_argument("--no-progress", action="store_true", help="no progress bar")
+    r.add_argument(
+        "--trust-policy",
+        action="store_true",
+        help="load a controller = 'policy:…' neither trained here nor shipped (loading a "
+        "stable-baselines3 file runs code from it: only for files you trust; docs/security.md)",
+    )
     r.set_defaults(func=cmd_campaign_run)
 
     q = actions.add_parser("report", help="capsize probabilities with confidence intervals")
@@ -124,6 +130,7 @@ def cmd_campaign_run(args: argparse.Namespace) -> int:
             workers=args.workers,
             address=args.address,
             progress=not args.no_progress,
+            trust_policy=args.trust_policy,
         )
     except ImportError as exc:
         raise CLIError(str(exc)) from None

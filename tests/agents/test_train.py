@@ -64,10 +64,11 @@ def _tiny_config(tmp_path, **training):
 
 def test_smoke_train_tiny_ppo_saves_model_config_normalizer(tmp_path):
     out = train(config_from_mapping(_tiny_config(tmp_path)))
-    for name in ("model.zip", "config.toml", "vecnormalize.pkl", "summary.json"):
+    for name in ("model.zip", "config.toml", "vecnormalize.npz", "summary.json"):
         assert (out / name).exists(), name
+    assert not (out / "vecnormalize.pkl").exists()  # no pickle written
     assert any((out / "tensorboard").rglob("events.out.tfevents*"))
-    policy = load_policy(out)
+    policy = load_policy(out)  # no opt-in: its digest was recorded by this training
     assert policy.obs_normalizer is not None
     action, _ = policy.predict(np.zeros((3, 4), np.float32))
     assert action.shape == (3, 1)
