@@ -67,16 +67,17 @@ import hashlib
 import json
 import math
 import os
+import sys
 import time
 import tomllib
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
 from typing import Any, Literal
 
 from ship_gym.analysis.capsize_map import SeaSpec
-from ship_gym.analysis.executors import Executor
+from ship_gym.analysis.executors import Executor, ProcessExecutor, WorkerLostError
 from ship_gym.analysis.policy_cells import POLICY_PREFIX, PolicyController
 
 __all__ = [
@@ -931,6 +932,21 @@ def campaign_records(spec: CampaignSpec, store: str | Path) -> tuple[list[dict],
     return records, len(order) - len(records)
 
 
+def describe_task(task: CampaignTask) -> str:
+    """A task as a user reads it: ship, loading, sea, heading, speed and seeds of its cells."""
+    c = task.cells[0]
+    seeds = [cell.seed for cell in task.cells]
+    loading = ", ".join(f"{k} = {v!r}" for k, v in c.loading) or "nominal loading"
+    return (
+        f"task {task.task_id} (ship {c.ship}, {loading}, sea {c.sea.label}, heading "
+        f"{c.heading_deg:g} deg, {c.speed_kind} {c.speed_value:g}, seeds {seeds})"
+    )
+
+
+def _to_stderr(message: str) -> None:
+    print(message, file=sys.stderr, flush=True)
+
+
 def run_campaign(
     spec: CampaignSpec,
     store_dir: str | Path,
@@ -940,6 +956,7 @@ def run_campaign(
     address: str | None = None,
     progress: bool = True,
     trust_policy: bool = False,
+    report: Callable[[str], None] | None = None,
 ) -> CampaignResult:
     """Run (or resume, or extend) a campaign into a store folder.
 
@@ -969,6 +986,14 @@ def run_campaign(
         tqdm progress bar over cells.
     trust_policy : bool
         The user's opt-in to load a policy neither trained here nor shipped.
+    report : callable, optional
+        Told (one line each) when a local worker process died and its task is run again
+        (:class:`~ship_gym.analysis.executors.ProcessExecutor`; default: printed on stderr).
+
+    Raises
+    ------
+    CampaignError
+        A task whose worker died more often than the executor retries, naming its cells.
     """
     from ship_gym.analysis.campaign_store import _pyarrow, store_cell_ids, write_shard
 
@@ -998,12 +1023,36 @@ def run_campaign(
         from tqdm import tqdm
 
         bar = tqdm(total=len(pending), desc=spec.name or "campaign", unit="cell")
+    say = report if report is not None else _to_stderr
+    lost: list[str] = []
+    if isinstance(ex, ProcessExecutor) and ex.on_retry is None:
+
+        def retry(index: int, attempt: int) -> None:
+            lost.append(todo[index].task_id)
+            say(
+                f"campaign: a worker process died running {describe_task(todo[index])}; "
+                f"running it again (attempt {attempt} of {ex.max_retries + 1})"
+            )
+
+        ex.on_retry = retry
     try:
         if todo:
-            for i, records in ex.map_unordered(run_task, todo):
-                write_shard(store, todo[i].task_id, records)
-                if bar is not None:
-                    bar.update(len(records))
+            try:
+                for i, records in ex.map_unordered(run_task, todo):
+                    write_shard(store, todo[i].task_id, records)
+                    if bar is not None:
+                        bar.update(len(records))
+            except WorkerLostError as exc:
+                raise CampaignError(
+                    f"{describe_task(todo[exc.index])}: its worker process died {exc.attempts} "
+                    "times (killed by a signal or out of memory); the finished tasks are kept in "
+                    f"{store}: rerun to resume, with fewer --workers if memory ran out"
+                ) from None
+        if lost:
+            say(
+                f"campaign: {len(lost)} task(s) lost a worker process and were run again "
+                f"({', '.join(sorted(set(lost)))}); every cell finished"
+            )
     finally:
         if bar is not None:
             bar.close()

@@ -346,3 +346,62 @@ def test_cli_run_then_report_from_the_toml(tmp_path, capsys):
     assert "ran 1 cells" in out and "ran 0 cells" in out and "1 already in the store" in out
     assert main(["campaign", "report", str(path)]) == 0
     assert "1 runs in 1 cells" in capsys.readouterr().out
+
+
+def run_task_killed_once(marker: str, task):
+    """campaign.run_task, but the first call SIGKILLs its own worker (a marker remembers)."""
+    import os
+    import signal
+
+    if not os.path.exists(marker):
+        Path(marker).write_text("killed")
+        os.kill(os.getpid(), signal.SIGKILL)
+    return cp.run_task(task)
+
+
+def test_a_killed_local_worker_is_retried_and_the_run_finishes(serial, tmp_path):
+    import functools
+
+    from ship_gym.analysis import executors as ex
+
+    marker = str(tmp_path / "killed")
+
+    class KillOnce(ex.ProcessExecutor):
+        def map_unordered(self, fn, items):
+            return super().map_unordered(functools.partial(run_task_killed_once, marker), items)
+
+    _, ref = serial
+    spec = cp.read_campaign(_write(tmp_path))
+    said: list[str] = []
+    with KillOnce(workers=2) as executor:
+        res = cp.run_campaign(
+            spec, tmp_path / "store", executor=executor, progress=False, report=said.append
+        )
+    assert res.n_run == 4 and _outputs(res.records) == _outputs(ref.records)
+    assert any("a worker process died running task" in m and "ship s175" in m for m in said)
+    assert "were run again" in said[-1] and "every cell finished" in said[-1]
+
+
+def run_task_always_killed(task):
+    import os
+    import signal
+
+    os.kill(os.getpid(), signal.SIGKILL)
+
+
+def test_a_task_whose_worker_always_dies_is_a_clear_error_naming_its_cells(tmp_path):
+    from ship_gym.analysis import executors as ex
+
+    class KillAlways(ex.ProcessExecutor):
+        def map_unordered(self, fn, items):
+            return super().map_unordered(run_task_always_killed, items)
+
+    spec = cp.read_campaign(_write(tmp_path, headings="[90]"))
+    with (
+        KillAlways(workers=1, max_retries=1) as executor,
+        pytest.raises(cp.CampaignError, match=r"task \w+ \(ship s175, .*heading 90 deg.*seeds "
+                      r"\[0, 1\]\): its worker process died 2 times .*rerun to resume"),
+    ):  # fmt: skip
+        cp.run_campaign(
+            spec, tmp_path / "store", executor=executor, progress=False, report=lambda m: None
+        )
