@@ -921,13 +921,16 @@ class CampaignResult:
     wall_s: float
 
 
-def campaign_records(spec: CampaignSpec, store: str | Path) -> tuple[list[dict], int]:
+def campaign_records(
+    spec: CampaignSpec, store: str | Path, *, report: Callable[[str], None] | None = None
+) -> tuple[list[dict], int]:
     """The store's records of the campaign's cells (in :func:`cells` order) and the number of
-    cells still missing."""
+    cells still missing (``report``: told of shards the store's manifest does not vouch for,
+    :func:`~ship_gym.analysis.campaign_store.read_store`)."""
     from ship_gym.analysis.campaign_store import read_store
 
     order = {c.cell_id: i for i, c in enumerate(cells(spec))}
-    records = [r for r in read_store(store) if r["cell_id"] in order]
+    records = [r for r in read_store(store, report=report) if r["cell_id"] in order]
     records.sort(key=lambda r: order[r["cell_id"]])
     return records, len(order) - len(records)
 
@@ -995,14 +998,23 @@ def run_campaign(
     CampaignError
         A task whose worker died more often than the executor retries, naming its cells.
     """
-    from ship_gym.analysis.campaign_store import _pyarrow, store_cell_ids, write_shard
+    from ship_gym.analysis.campaign_store import (
+        _pyarrow,
+        campaign_digest,
+        record_campaign,
+        store_cell_ids,
+        write_shard,
+    )
 
     _pyarrow()  # fail before any work when pyarrow is missing
     t0 = time.perf_counter()
+    say = report if report is not None else _to_stderr
     store = Path(store_dir)
     store.mkdir(parents=True, exist_ok=True)
     all_cells = cells(spec)
-    done = store_cell_ids(store)
+    digest = campaign_digest(c.cell_id for c in all_cells)
+    record_campaign(store, digest, spec.name)
+    done = store_cell_ids(store, report=say)
     pending = [c for c in all_cells if c.cell_id not in done]
     if spec.policy is not None and pending:
         from ship_gym.analysis.policy_cells import check_policy_controller
@@ -1023,7 +1035,6 @@ def run_campaign(
         from tqdm import tqdm
 
         bar = tqdm(total=len(pending), desc=spec.name or "campaign", unit="cell")
-    say = report if report is not None else _to_stderr
     lost: list[str] = []
     if isinstance(ex, ProcessExecutor) and ex.on_retry is None:
 
@@ -1039,7 +1050,7 @@ def run_campaign(
         if todo:
             try:
                 for i, records in ex.map_unordered(run_task, todo):
-                    write_shard(store, todo[i].task_id, records)
+                    write_shard(store, todo[i].task_id, records, campaign=digest)
                     if bar is not None:
                         bar.update(len(records))
             except WorkerLostError as exc:
@@ -1058,7 +1069,7 @@ def run_campaign(
             bar.close()
         if own:
             ex.close()
-    records, _ = campaign_records(spec, store)
+    records, _ = campaign_records(spec, store, report=lambda message: None)  # said above
     return CampaignResult(
         spec=spec,
         store=store,

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -145,6 +146,10 @@ def _fmt(x: float) -> str:
     return "     -" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:6.1f}"
 
 
+def _stderr(message: str) -> None:
+    print(f"ship-gym campaign: {message}", file=sys.stderr, flush=True)
+
+
 def cmd_campaign_report(args: argparse.Namespace) -> int:
     """Print (and plot) the capsize probabilities of a campaign with their intervals."""
     from ship_gym.analysis import capsize_statistics as cs
@@ -159,7 +164,7 @@ def cmd_campaign_report(args: argparse.Namespace) -> int:
         if source.is_dir():
             if args.store:
                 raise CLIError("--store is for a campaign FILE.toml, not a store folder")
-            records, missing, title = read_store(source), 0, str(source)
+            records, missing, title = read_store(source, report=_stderr), 0, str(source)
         else:
             spec = _read(args.source)
             store = Path(args.store) if args.store else _default_store(source)
@@ -168,7 +173,7 @@ def cmd_campaign_report(args: argparse.Namespace) -> int:
                     f"no store {str(store)!r} for {args.source}; run "
                     f"`ship-gym campaign run {args.source}` first"
                 )
-            records, missing = campaign_records(spec, store)
+            records, missing = campaign_records(spec, store, report=_stderr)
             title = spec.name or source.stem
     except (ImportError, ValueError) as exc:
         raise CLIError(str(exc)) from None
