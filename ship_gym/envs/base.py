@@ -564,10 +564,10 @@ class TaskVectorEnv(_TaskView, VectorEnv):
         # task draws for it (sensor noise) is undone: its generator enters the reset where the
         # single env's reset() finds it, at the end of the last real step
         pending = np.flatnonzero(self._pending_reset).tolist()
-        saved = [self._rng(i).bit_generator.state for i in pending]
+        saved = [self._rng(k).bit_generator.state for k in pending]
         result = self.task.step(a)
-        for i, state in zip(pending, saved, strict=True):
-            self._rng(i).bit_generator.state = state
+        for k, state in zip(pending, saved, strict=True):
+            self._rng(k).bit_generator.state = state
         stepped = ~self._pending_reset
         self._steps += stepped  # +1 where stepped
         reward = result.reward()
