@@ -20,7 +20,7 @@ For each task (:data:`TASKS`) the benchmark
    steps, one line per seed, and beside it the deterministic policy's return on the validation
    seeds of a config with a ``[validation]`` table, :mod:`ship_gym.agents.validation`), and
    copies the best training seed of every config into
-   ``<out>/policies/<task>/<config>/`` (``model.zip``, ``vecnormalize.pkl``, ``config.toml``,
+   ``<out>/policies/<task>/<config>/`` (``model.zip``, ``vecnormalize.npz``, ``config.toml``,
    ``residual.json`` of a residual policy, ``validation.csv``), so
    that ``ship-gym evaluate --policies model:<that folder>`` reproduces the table without
    training.
@@ -472,7 +472,7 @@ def _ship_policy(run: Path, to: Path) -> None:
     from ship_gym.agents.residual import RESIDUAL_FILE
     from ship_gym.agents.validation import VALIDATION_FILE
 
-    kept = ("model.zip", "vecnormalize.pkl", "config.toml", "summary.json")
+    kept = ("model.zip", "vecnormalize.npz", "config.toml", "summary.json")
     for name in (*kept, RESIDUAL_FILE, VALIDATION_FILE):
         if (run / name).is_file():
             shutil.copy2(run / name, to / name)

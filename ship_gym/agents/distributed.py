@@ -15,7 +15,7 @@ shipped ``ppo_roll_one_dof`` config on a local two-CPU cluster::
     # runs/ray/ppo_roll_one_dof/seed_0/model.zip, runs/ray/ppo_roll_one_dof/seed_1/model.zip
 
 Each run directory holds what ``ship-gym train`` writes (``model.zip``, ``config.toml``,
-``summary.json``, ``vecnormalize.pkl`` when normalising; :mod:`ship_gym.agents.train`). Requires
+``summary.json``, ``vecnormalize.npz`` when normalising; :mod:`ship_gym.agents.train`). Requires
 the ``agents`` and ``distributed`` extras (``pip install 'ship_gym[agents,distributed]'``).
 With a remote cluster, ``output_dir`` must be a path every node can write to (a shared
 filesystem): the runs are saved where their tasks run.

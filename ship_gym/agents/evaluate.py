@@ -359,14 +359,15 @@ def policy_labels(specs: Sequence[str]) -> list[str]:
     ]
 
 
-def _policy_factory(spec: str, device: str = "cpu") -> tuple[str, Any]:
-    """``"zero"``, ``"pid"``, ``"fins"``, ``"ride"`` or ``"model:PATH"`` → (label, factory)."""
+def _policy_factory(spec: str, device: str = "cpu", *, trusted: bool = False) -> tuple[str, Any]:
+    """``"zero"``, ``"pid"``, ``"fins"``, ``"ride"`` or ``"model:PATH"`` → (label, factory)
+    (``trusted``: the opt-in to load a model neither trained here nor shipped)."""
     from ship_gym.agents.baselines import BASELINES, make_baseline
 
     spec = spec.strip()
     if spec.startswith("model:"):
         path = spec[len("model:") :]
-        policy = load_agent_policy(path, device=device)
+        policy = load_agent_policy(path, device=device, trusted=trusted)
         return policy_labels([spec])[0], policy
     if spec in BASELINES:
         return spec, lambda env, name=spec: make_baseline(name, env)
@@ -385,6 +386,7 @@ def evaluate_policies(
     device: str = "cpu",
     use_training_env: bool = True,
     report: Any = None,
+    trusted: bool = False,
 ) -> dict[str, Any]:
     """Evaluate each policy on episodes seeded ``seed … seed + episodes − 1``.
 
@@ -392,6 +394,12 @@ def evaluate_policies(
     was trained with (``[env] kwargs`` of its run's ``config.toml``), updated by ``env_kwargs``;
     ``report(message)`` (e.g. ``print``) is told which settings were applied. Each policy gets
     a unique label (:func:`policy_labels`).
+
+    A saved model is loaded only when trained by this installation, shipped with the package,
+    or ``trusted`` (the caller's opt-in: loading an SB3 model runs code from the file;
+    :mod:`ship_gym.envs.policy_trust`); else
+    :class:`~ship_gym.envs.policy_trust.UntrustedPolicyError` (a ValueError) is raised before
+    any policy runs.
 
     Returns
     -------
@@ -414,8 +422,8 @@ def evaluate_policies(
         "policy_env_kwargs": {},
     }
     labels = policy_labels(policies)
-    for spec, label in zip(policies, labels, strict=True):
-        _, policy = _policy_factory(spec, device=device)
+    factories = [_policy_factory(spec, device=device, trusted=trusted)[1] for spec in policies]
+    for label, policy in zip(labels, factories, strict=True):
         kwargs = dict(env_kwargs or {})
         training_env = getattr(policy, "training_env", None) or {}
         if training_env:

@@ -205,10 +205,15 @@ class ResidualPolicy:
         return residual_action(base, learned, self.scale).astype(np.float32), memory
 
 
-def load_agent_policy(path: str | Path, device: str = "cpu") -> ModelPolicy | ResidualPolicy:
+def load_agent_policy(
+    path: str | Path, device: str = "cpu", *, trusted: bool = False
+) -> ModelPolicy | ResidualPolicy:
     """A trained run as a policy: :func:`~ship_gym.envs.saved_policies.load_policy`, composed
-    with its baseline when the run folder holds ``residual.json``."""
-    policy = load_policy(path, device=device, residual=True)
+    with its baseline when the run folder holds ``residual.json``.
+
+    ``trusted`` is the caller's opt-in to load a model neither trained here nor shipped (loading
+    an SB3 model runs code from the file: :mod:`ship_gym.envs.policy_trust`)."""
+    policy = load_policy(path, device=device, residual=True, trusted=trusted)
     p = Path(path)
     residual = (p if p.is_dir() else p.parent) / RESIDUAL_FILE
     if not residual.exists():

@@ -44,19 +44,22 @@ Configuration (a TOML file, or the name of one shipped in :mod:`ship_gym.agents.
                                   #   or = "fins": that baseline's effort (measured first)
     lagrangian_lr = 0.05          # multiplier step; also lambda_init = 0, lambda_max = 100
 
-A relative ``output_dir`` (or ``--output``) is taken from the working directory, whether the
-config is a file or a shipped name. The run directory receives ``model.zip``, ``config.toml`` (a
-copy of the configuration actually used, with command-line overrides), ``vecnormalize.pkl`` when
-``normalize`` is on, the tensorboard logs, ``progress.csv`` (the learning curve: after every
-rollout the time steps, wall time, mean return, length and cost of the last 100 episodes, and
-λ) and ``summary.json`` (time steps, wall time, steps/s, last mean episode return and cost,
-final λ), and ``residual.json`` (the baseline with all its gains) for a residual run. With a
-``[validation]`` table it also gets ``validation.csv`` (the deterministic policy's evaluations)
-and, with ``keep_best``, ``model.zip`` (and ``vecnormalize.pkl``) is the best evaluated
-checkpoint, ``final_model.zip`` (``final_vecnormalize.pkl``) the last. With a
-``[safe]`` table the reward is shaped by a Lagrange multiplier on the cost or on the
-action's mean square (:mod:`ship_gym.agents.lagrangian`), and the validation chooses among the
-checkpoints within the budget. All files are written atomically.
+A relative ``output_dir`` (or ``--output``) is taken from the working directory, whether the config
+is a file or a shipped name. The run directory receives ``model.zip``, ``config.toml`` (a copy of
+the configuration actually used, with command-line overrides), ``vecnormalize.npz`` (the observation
+statistics as plain arrays, read without pickle) when ``normalize`` is on, the tensorboard logs,
+``progress.csv`` (the learning curve: after every rollout the time steps, wall time, mean return,
+length and cost of the last 100 episodes, and λ) and ``summary.json`` (time steps, wall time,
+steps/s, last mean episode return and cost, final λ), and ``residual.json`` (the baseline with all
+its gains) for a residual run. With a ``[validation]`` table it also gets ``validation.csv`` (the
+deterministic policy's evaluations) and, with ``keep_best``, ``model.zip`` (and
+``vecnormalize.npz``) is the best evaluated checkpoint, ``final_model.zip``
+(``final_vecnormalize.npz``) the last. With a ``[safe]`` table the reward is shaped by a Lagrange
+multiplier on the cost or on the action's mean square (:mod:`ship_gym.agents.lagrangian`), and the
+validation chooses among the checkpoints within the budget. All files are written atomically. The
+SHA-256 of every model saved is recorded in this installation's trust folder
+(:func:`ship_gym.envs.policy_trust.record_trusted_policy`), so that loading it needs no opt-in
+(loading an SB3 model runs code from the file: ``docs/security.md``).
 :func:`ship_gym.agents.residual.load_agent_policy` reads the directory back.
 """
 
@@ -90,6 +93,121 @@ from ship_gym.envs.saved_policies import ALGORITHMS
 
 VECTORIZATIONS = ("vector", "dummy")
 
+POLICIES = ("MlpPolicy",)
+"""The SB3 policy classes a config may name: every ship_gym observation is a flat vector."""
+
+MAX_TIMESTEPS = 10**10
+"""Largest ``total_timesteps`` accepted (≈ 3 years of a 100 steps/s run)."""
+
+# [algorithm.hyperparameters] checked at read time: (kind, low, low included, high, high incl.)
+_HYPERPARAMETER_RANGES: dict[str, tuple[str, float, bool, float, bool]] = {
+    "n_steps": ("int", 1, True, 10**8, True),
+    "batch_size": ("int", 2, True, 10**8, True),
+    "n_epochs": ("int", 1, True, 10**5, True),
+    "buffer_size": ("int", 1, True, 10**9, True),
+    "learning_starts": ("int", 0, True, 10**10, True),
+    "gradient_steps": ("int", -1, True, 10**6, True),
+    "policy_delay": ("int", 1, True, 10**6, True),
+    "stats_window_size": ("int", 1, True, 10**6, True),
+    "gamma": ("real", 0.0, False, 1.0, True),
+    "gae_lambda": ("real", 0.0, True, 1.0, True),
+    "tau": ("real", 0.0, False, 1.0, True),
+    "learning_rate": ("real", 0.0, False, 10.0, True),
+    "clip_range": ("real", 0.0, False, 10.0, True),
+    "vf_coef": ("real", 0.0, True, 1e6, True),
+    "max_grad_norm": ("real", 0.0, False, 1e12, True),
+    "target_kl": ("real", 0.0, False, 1e6, True),
+    "target_policy_noise": ("real", 0.0, True, 1e6, True),
+    "target_noise_clip": ("real", 0.0, True, 1e6, True),
+}
+
+
+def _number_ok(value: Any, kind: str, bounds: tuple[float, bool, float, bool]) -> bool:
+    """Whether a TOML value is an int (``kind == "int"``; not a bool) or a finite real in the
+    interval ``bounds`` = (low, low included, high, high included)."""
+    import math
+
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return False
+    if kind == "int" and not isinstance(value, int):
+        return False
+    if not math.isfinite(value):
+        return False
+    low, low_in, high, high_in = bounds
+    return (value > low or (low_in and value == low)) and (
+        value < high or (high_in and value == high)
+    )
+
+
+def _interval(low: float, low_in: bool, high: float, high_in: bool) -> str:
+    return f"{'[' if low_in else '('}{low:g}, {high:g}{']' if high_in else ')'}"
+
+
+def check_hyperparameters(algorithm: str, hyperparameters: Mapping[str, Any], n_envs: int) -> None:
+    """Check ``[algorithm.hyperparameters]`` before any work, naming the key.
+
+    Known numeric keys must lie in their range (:data:`_HYPERPARAMETER_RANGES`, e.g.
+    ``algorithm.hyperparameters.batch_size`` an integer ≥ 2, ``gamma`` in (0, 1]); PPO/A2C
+    need ``n_steps × env.n_envs ≥ 2``; a key the algorithm does not take is refused (when
+    stable-baselines3 is installed).
+
+    Raises
+    ------
+    ValueError
+        Naming ``algorithm.hyperparameters.<key>``, the value and what was expected.
+    """
+    for key, value in hyperparameters.items():
+        rule = _HYPERPARAMETER_RANGES.get(key)
+        if rule is None:
+            continue
+        kind, *bounds = rule
+        if not _number_ok(value, kind, tuple(bounds)):  # type: ignore[arg-type]
+            what = "an integer" if kind == "int" else "a number"
+            raise ValueError(
+                f"algorithm.hyperparameters.{key} = {value!r}; expected {what} in "
+                f"{_interval(*bounds)}"  # type: ignore[arg-type]
+            )
+    ent_coef = hyperparameters.get("ent_coef")
+    if ent_coef is not None and not (
+        _number_ok(ent_coef, "real", (0.0, True, 1e6, True))
+        or (isinstance(ent_coef, str) and ent_coef.startswith("auto"))
+    ):
+        raise ValueError(
+            f"algorithm.hyperparameters.ent_coef = {ent_coef!r}; expected a number >= 0 (or "
+            "'auto' for SAC)"
+        )
+    if algorithm.upper() in ("PPO", "A2C"):
+        n_steps = hyperparameters.get("n_steps", 2048 if algorithm.upper() == "PPO" else 5)
+        if n_steps * n_envs < 2:
+            raise ValueError(
+                f"algorithm.hyperparameters.n_steps = {n_steps!r} with env.n_envs = {n_envs}: "
+                "a rollout of one step; expected n_steps × n_envs >= 2"
+            )
+    try:
+        import inspect
+
+        import stable_baselines3
+    except ImportError:  # the agents extra is missing: train() says so
+        return
+    cls = getattr(stable_baselines3, algorithm.upper())
+    accepted = set(inspect.signature(cls.__init__).parameters) - {
+        "self",
+        "policy",
+        "env",
+        "seed",
+        "device",
+        "verbose",
+        "tensorboard_log",
+        "policy_kwargs",
+        "_init_setup_model",
+    }
+    unknown = sorted(set(hyperparameters) - accepted)
+    if unknown:
+        raise ValueError(
+            f"algorithm.hyperparameters.{unknown[0]}: not a {algorithm.upper()} hyperparameter; "
+            f"expected some of {sorted(accepted)}"
+        )
+
 
 @dataclass(frozen=True)
 class TrainConfig:
@@ -119,7 +237,7 @@ class TrainConfig:
     def __post_init__(self) -> None:
         if not isinstance(self.env_id, str) or not self.env_id:
             raise ValueError(f"env.id must be a registered env id, got {self.env_id!r}")
-        if not isinstance(self.n_envs, int) or self.n_envs < 1:
+        if isinstance(self.n_envs, bool) or not isinstance(self.n_envs, int) or self.n_envs < 1:
             raise ValueError(f"env.n_envs must be a positive integer, got {self.n_envs!r}")
         if self.vectorization not in VECTORIZATIONS:
             raise ValueError(
@@ -127,10 +245,21 @@ class TrainConfig:
             )
         if self.algorithm.upper() not in ALGORITHMS:
             raise ValueError(f"algorithm.name must be one of {ALGORITHMS}, got {self.algorithm!r}")
-        if not isinstance(self.total_timesteps, int) or self.total_timesteps < 1:
+        if self.policy not in POLICIES:
             raise ValueError(
-                f"training.total_timesteps must be a positive integer, got {self.total_timesteps!r}"
+                f"algorithm.policy = {self.policy!r}; expected one of {list(POLICIES)} (the "
+                "observations are flat vectors: no image or dict policy)"
             )
+        if (
+            isinstance(self.total_timesteps, bool)
+            or not isinstance(self.total_timesteps, int)
+            or not 1 <= self.total_timesteps <= MAX_TIMESTEPS
+        ):
+            raise ValueError(
+                f"training.total_timesteps = {self.total_timesteps!r}; expected an integer in "
+                f"[1, {MAX_TIMESTEPS:.0e}]"
+            )
+        check_hyperparameters(self.algorithm, self.hyperparameters, self.n_envs)
         if not isinstance(self.seed, int):
             raise ValueError(f"training.seed must be an integer, got {self.seed!r}")
         if self.validation is not None:
@@ -197,7 +326,7 @@ def config_from_mapping(data: Mapping[str, Any]) -> TrainConfig:
         policy=algo.get("policy", "MlpPolicy"),
         hyperparameters=dict(algo.get("hyperparameters", {})),
         policy_kwargs=dict(algo.get("policy_kwargs", {})),
-        total_timesteps=int(training.get("total_timesteps", 100_000)),
+        total_timesteps=_integral(training.get("total_timesteps", 100_000)),
         seed=training.get("seed", 0),
         output_dir=str(training.get("output_dir", "runs/run")),
         progress_bar=bool(training.get("progress_bar", True)),
@@ -209,6 +338,13 @@ def config_from_mapping(data: Mapping[str, Any]) -> TrainConfig:
         validation=validation_config(data["validation"]) if "validation" in data else None,
         raw=copy.deepcopy(dict(data)),
     )
+
+
+def _integral(value: Any) -> Any:
+    """An integral float (TOML ``1e6``) as int; anything else as given (then checked)."""
+    if isinstance(value, float) and value.is_integer() and abs(value) <= 2**63:
+        return int(value)
+    return value
 
 
 def load_config(path: str | Path, **overrides: Any) -> TrainConfig:
@@ -368,6 +504,8 @@ def train(config: TrainConfig) -> Path:
     import stable_baselines3
     from stable_baselines3.common.vec_env import VecNormalize
 
+    from ship_gym.envs.policy_trust import record_trusted_policy
+    from ship_gym.envs.saved_policies import save_obs_normalizer
     from ship_gym.io_utils import atomic_write, atomic_write_text
 
     if config.torch_threads is not None:
@@ -379,7 +517,9 @@ def train(config: TrainConfig) -> Path:
     # a summary marks a finished run (the benchmark reuses such runs): an earlier run's must not
     # stand beside this run's config while this one trains
     (out / "summary.json").unlink(missing_ok=True)
-    for stale in VALIDATION_RUN_FILES:  # nor an earlier run's checkpoints and evaluations
+    stale_statistics = [f"{p}vecnormalize.{x}" for p in ("", BEST, FINAL) for x in ("npz", "pkl")]
+    for stale in (*VALIDATION_RUN_FILES, *stale_statistics):
+        # nor an earlier run's checkpoints, evaluations and observation statistics
         (out / stale).unlink(missing_ok=True)
     atomic_write_text(out / "config.toml", dump_toml(config.raw))
     validation_limit = None
@@ -446,11 +586,14 @@ def train(config: TrainConfig) -> Path:
         model_file, normalizer_file = checkpoint_files(FINAL if selected else "")
         atomic_write(out / model_file, lambda p: model.save(p))
         if isinstance(venv, VecNormalize):
-            atomic_write(out / normalizer_file, lambda p: venv.save(str(p)))
+            atomic_write(out / normalizer_file, lambda p: save_obs_normalizer(venv, p))
         if selected:  # the best checkpoint becomes the run's model
             for best, run in zip(checkpoint_files(BEST), checkpoint_files(""), strict=True):
                 if (out / best).is_file():
                     (out / best).replace(out / run)
+        for saved in {checkpoint_files("")[0], model_file}:  # this installation's own models
+            if (out / saved).is_file():
+                record_trusted_policy(out / saved)
         atomic_write_text(out / "progress.csv", curve.csv())
         episodes = list(model.ep_info_buffer or [])
         summary = {

@@ -54,9 +54,9 @@ FINAL = "final_"
 
 def checkpoint_files(prefix: str) -> tuple[str, str]:
     """The model and observation-statistics file names of a checkpoint with ``prefix`` (""
-    for the run's own ``model.zip``, ``vecnormalize.pkl``; the loader pairs them the same way:
+    for the run's own ``model.zip``, ``vecnormalize.npz``; the loader pairs them the same way:
     :func:`ship_gym.envs.saved_policies.load_policy`)."""
-    return f"{prefix}model.zip", f"{prefix}vecnormalize.pkl"
+    return f"{prefix}model.zip", f"{prefix}vecnormalize.npz"
 
 
 VALIDATION_RUN_FILES = (*checkpoint_files(BEST), *checkpoint_files(FINAL), VALIDATION_FILE)
@@ -176,7 +176,7 @@ def validation_callback(
     """An SB3 callback evaluating the deterministic policy on the validation seeds (module
     docstring), at the first rollout start after every ``config.every`` steps (after the update
     of the steps collected) and at the end of training. It saves the best checkpoint as
-    ``best_model.zip`` (and ``best_vecnormalize.pkl``) and the table ``validation.csv`` in
+    ``best_model.zip`` (and ``best_vecnormalize.npz``) and the table ``validation.csv`` in
     ``out_dir`` as it goes; ``rows`` holds the evaluations, ``best`` the index of the best,
     ``keeps_best`` whether the run's model is to be that checkpoint, ``seeds`` the validation
     seeds, ``csv()`` the table. ``limit`` (column, value) is a ``[safe]`` run's budget on an
@@ -186,6 +186,7 @@ def validation_callback(
     from stable_baselines3.common.vec_env import VecNormalize
 
     from ship_gym.agents.evaluate import run_episodes, summarize
+    from ship_gym.envs.saved_policies import save_obs_normalizer
     from ship_gym.io_utils import atomic_write, atomic_write_text, csv_text
 
     out = Path(out_dir)
@@ -232,7 +233,7 @@ def validation_callback(
                 atomic_write(out / model_file, lambda p: self.model.save(p))
                 env = self.training_env
                 if isinstance(env, VecNormalize):
-                    atomic_write(out / normalizer_file, lambda p: env.save(str(p)))
+                    atomic_write(out / normalizer_file, lambda p: save_obs_normalizer(env, p))
             self.best = best
             atomic_write_text(out / VALIDATION_FILE, self.csv())  # readable while training
 

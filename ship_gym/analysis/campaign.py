@@ -67,16 +67,17 @@ import hashlib
 import json
 import math
 import os
+import sys
 import time
 import tomllib
-from collections.abc import Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
 from typing import Any, Literal
 
 from ship_gym.analysis.capsize_map import SeaSpec
-from ship_gym.analysis.executors import Executor
+from ship_gym.analysis.executors import Executor, ProcessExecutor, WorkerLostError
 from ship_gym.analysis.policy_cells import POLICY_PREFIX, PolicyController
 
 __all__ = [
@@ -675,6 +676,12 @@ class CampaignTask:
     duration_s, dt_s, integrator, radiation, capsize_angle_deg, controller, record_every,
     database
         The campaign's run settings (:class:`CampaignSpec`).
+    policy_sha256 : str
+        For ``controller = "policy:…"``: the SHA-256 of its ``model.zip`` checked in the driver
+        (:func:`~ship_gym.analysis.policy_cells.check_policy_controller`); a worker loads only
+        that file.
+    trust_policy : bool
+        The user's opt-in (``--trust-policy``) to load a policy neither trained here nor shipped.
     """
 
     task_id: str
@@ -687,10 +694,15 @@ class CampaignTask:
     controller: str
     record_every: int
     database: str
+    policy_sha256: str = ""
+    trust_policy: bool = False
 
 
-def tasks(spec: CampaignSpec, pending: Sequence[CampaignCell]) -> list[CampaignTask]:
-    """Group pending cells by all but the seed and cut the groups into ``batch_seeds`` chunks."""
+def tasks(
+    spec: CampaignSpec, pending: Sequence[CampaignCell], *, trust_policy: bool = False
+) -> list[CampaignTask]:
+    """Group pending cells by all but the seed and cut the groups into ``batch_seeds`` chunks
+    (``trust_policy``: the user's opt-in carried to the workers, :class:`CampaignTask`)."""
     groups: dict[tuple, list[CampaignCell]] = {}
     for c in pending:
         groups.setdefault(c.group, []).append(c)
@@ -713,6 +725,8 @@ def tasks(spec: CampaignSpec, pending: Sequence[CampaignCell]) -> list[CampaignT
                     ),
                     record_every=spec.record_every,
                     database=spec.database,
+                    policy_sha256=spec.policy.model_sha256 if spec.policy is not None else "",
+                    trust_policy=trust_policy,
                 )
             )
     return out
@@ -828,6 +842,8 @@ def _run_policy_task(
     controller = read_policy_controller(
         task.controller[len(POLICY_PREFIX) :], field=f"controller = {task.controller!r}"
     )
+    # the file the driver checked, not whatever is there now
+    controller = replace(controller, model_sha256=task.policy_sha256)
     hull = hull_of(first.ship_path, **loading)
     return run_policy_cells(
         controller,
@@ -841,6 +857,7 @@ def _run_policy_task(
         dt_s=task.dt_s,
         integrator=task.integrator,
         capsize_angle_deg=angle,
+        trusted=task.trust_policy,
     )
 
 
@@ -904,15 +921,33 @@ class CampaignResult:
     wall_s: float
 
 
-def campaign_records(spec: CampaignSpec, store: str | Path) -> tuple[list[dict], int]:
+def campaign_records(
+    spec: CampaignSpec, store: str | Path, *, report: Callable[[str], None] | None = None
+) -> tuple[list[dict], int]:
     """The store's records of the campaign's cells (in :func:`cells` order) and the number of
-    cells still missing."""
+    cells still missing (``report``: told of shards the store's manifest does not vouch for,
+    :func:`~ship_gym.analysis.campaign_store.read_store`)."""
     from ship_gym.analysis.campaign_store import read_store
 
     order = {c.cell_id: i for i, c in enumerate(cells(spec))}
-    records = [r for r in read_store(store) if r["cell_id"] in order]
+    records = [r for r in read_store(store, report=report) if r["cell_id"] in order]
     records.sort(key=lambda r: order[r["cell_id"]])
     return records, len(order) - len(records)
+
+
+def describe_task(task: CampaignTask) -> str:
+    """A task as a user reads it: ship, loading, sea, heading, speed and seeds of its cells."""
+    c = task.cells[0]
+    seeds = [cell.seed for cell in task.cells]
+    loading = ", ".join(f"{k} = {v!r}" for k, v in c.loading) or "nominal loading"
+    return (
+        f"task {task.task_id} (ship {c.ship}, {loading}, sea {c.sea.label}, heading "
+        f"{c.heading_deg:g} deg, {c.speed_kind} {c.speed_value:g}, seeds {seeds})"
+    )
+
+
+def _to_stderr(message: str) -> None:
+    print(message, file=sys.stderr, flush=True)
 
 
 def run_campaign(
@@ -923,8 +958,15 @@ def run_campaign(
     workers: int = 1,
     address: str | None = None,
     progress: bool = True,
+    trust_policy: bool = False,
+    report: Callable[[str], None] | None = None,
 ) -> CampaignResult:
     """Run (or resume, or extend) a campaign into a store folder.
+
+    A ``controller = "policy:…"`` is checked first: a model neither trained by this
+    installation nor shipped is refused unless ``trust_policy`` (loading an SB3 model runs code
+    from the file; :func:`~ship_gym.analysis.policy_cells.check_policy_controller`), and every
+    worker loads only the file of the SHA-256 checked here.
 
     Cells already in the store (by id) are skipped; the others are grouped into tasks
     (:func:`tasks`) and run by the executor, every finished task written as one shard
@@ -945,17 +987,43 @@ def run_campaign(
         Ray cluster address (``"ray"``).
     progress : bool
         tqdm progress bar over cells.
+    trust_policy : bool
+        The user's opt-in to load a policy neither trained here nor shipped.
+    report : callable, optional
+        Told (one line each) when a local worker process died and its task is run again
+        (:class:`~ship_gym.analysis.executors.ProcessExecutor`; default: printed on stderr).
+
+    Raises
+    ------
+    CampaignError
+        A task whose worker died more often than the executor retries, naming its cells.
     """
-    from ship_gym.analysis.campaign_store import _pyarrow, store_cell_ids, write_shard
+    from ship_gym.analysis.campaign_store import (
+        _pyarrow,
+        campaign_digest,
+        record_campaign,
+        store_cell_ids,
+        write_shard,
+    )
 
     _pyarrow()  # fail before any work when pyarrow is missing
     t0 = time.perf_counter()
+    say = report if report is not None else _to_stderr
     store = Path(store_dir)
     store.mkdir(parents=True, exist_ok=True)
     all_cells = cells(spec)
-    done = store_cell_ids(store)
+    digest = campaign_digest(c.cell_id for c in all_cells)
+    record_campaign(store, digest, spec.name)
+    done = store_cell_ids(store, report=say)
     pending = [c for c in all_cells if c.cell_id not in done]
-    todo = tasks(spec, pending)
+    if spec.policy is not None and pending:
+        from ship_gym.analysis.policy_cells import check_policy_controller
+
+        try:
+            check_policy_controller(spec.policy, trusted=trust_policy)
+        except ValueError as exc:
+            raise CampaignError(f"controller = {spec.controller!r}: {exc}") from None
+    todo = tasks(spec, pending, trust_policy=trust_policy)
     own = isinstance(executor, str)
     ex: Executor = (
         make_campaign_executor(executor, workers=workers, address=address)
@@ -967,18 +1035,41 @@ def run_campaign(
         from tqdm import tqdm
 
         bar = tqdm(total=len(pending), desc=spec.name or "campaign", unit="cell")
+    lost: list[str] = []
+    if isinstance(ex, ProcessExecutor) and ex.on_retry is None:
+
+        def retry(index: int, attempt: int) -> None:
+            lost.append(todo[index].task_id)
+            say(
+                f"campaign: a worker process died running {describe_task(todo[index])}; "
+                f"running it again (attempt {attempt} of {ex.max_retries + 1})"
+            )
+
+        ex.on_retry = retry
     try:
         if todo:
-            for i, records in ex.map_unordered(run_task, todo):
-                write_shard(store, todo[i].task_id, records)
-                if bar is not None:
-                    bar.update(len(records))
+            try:
+                for i, records in ex.map_unordered(run_task, todo):
+                    write_shard(store, todo[i].task_id, records, campaign=digest)
+                    if bar is not None:
+                        bar.update(len(records))
+            except WorkerLostError as exc:
+                raise CampaignError(
+                    f"{describe_task(todo[exc.index])}: its worker process died {exc.attempts} "
+                    "times (killed by a signal or out of memory); the finished tasks are kept in "
+                    f"{store}: rerun to resume, with fewer --workers if memory ran out"
+                ) from None
+        if lost:
+            say(
+                f"campaign: {len(lost)} task(s) lost a worker process and were run again "
+                f"({', '.join(sorted(set(lost)))}); every cell finished"
+            )
     finally:
         if bar is not None:
             bar.close()
         if own:
             ex.close()
-    records, _ = campaign_records(spec, store)
+    records, _ = campaign_records(spec, store, report=lambda message: None)  # said above
     return CampaignResult(
         spec=spec,
         store=store,

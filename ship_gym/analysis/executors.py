@@ -47,6 +47,7 @@ __all__ = [
     "ProcessExecutor",
     "RayExecutor",
     "SerialExecutor",
+    "WorkerLostError",
     "make_executor",
     "ray_available",
 ]
@@ -203,6 +204,26 @@ def _process_initializer(parent_pid: int, env: dict[str, str]) -> None:
         threadpool_limits(limits=1)  # libraries already loaded by the unpickling imports
 
 
+class WorkerLostError(RuntimeError):
+    """A worker process died (killed, out of memory) every time it ran an item.
+
+    Attributes
+    ----------
+    index : int
+        The item's index.
+    attempts : int
+        How many times it was started.
+    """
+
+    def __init__(self, index: int, attempts: int) -> None:
+        super().__init__(
+            f"item {index}: its worker process died {attempts} times (killed by a signal or out "
+            "of memory)"
+        )
+        self.index = index
+        self.attempts = attempts
+
+
 class ProcessExecutor(_Closing):
     """``workers`` local worker processes (:class:`concurrent.futures.ProcessPoolExecutor`).
 
@@ -217,21 +238,40 @@ class ProcessExecutor(_Closing):
     Notes
     -----
     At most ``2 × workers`` items are in flight at a time, so closing never has a long queue to
-    cancel. A worker that dies (killed, out of memory) raises
-    :class:`concurrent.futures.process.BrokenProcessPool` from :meth:`map_unordered`.
+    cancel. A worker that dies (killed, out of memory) breaks the pool and every item in flight
+    with it: the pool is restarted and those items are run again, each at most ``max_retries``
+    times (default 2, as Ray retries a task whose worker died); ``on_retry(index, attempt)`` is
+    called for each and :attr:`lost` lists their indices. An item whose worker died more often
+    raises :class:`WorkerLostError` naming it.
     """
 
-    def __init__(self, workers: int = 1, *, context: str = "spawn") -> None:
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
-
+    def __init__(
+        self,
+        workers: int = 1,
+        *,
+        context: str = "spawn",
+        max_retries: int = 2,
+        on_retry: Callable[[int, int], None] | None = None,
+    ) -> None:
         self.workers = _check_workers(workers)
         if context not in ("spawn", "forkserver"):
             raise ValueError(f"context must be 'spawn' or 'forkserver', got {context!r}")
+        if isinstance(max_retries, bool) or not isinstance(max_retries, int) or max_retries < 0:
+            raise ValueError(f"max_retries must be an integer >= 0, got {max_retries!r}")
+        self.max_retries = max_retries
+        self.on_retry = on_retry
+        self.lost: list[int] = []
+        self._context = context
         self._closed = False
-        self._pool: ProcessPoolExecutor | None = ProcessPoolExecutor(
+        self._pool: Any = self._new_pool()
+
+    def _new_pool(self) -> Any:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        return ProcessPoolExecutor(
             max_workers=self.workers,
-            mp_context=multiprocessing.get_context(context),
+            mp_context=multiprocessing.get_context(self._context),
             initializer=_process_initializer,
             initargs=(os.getpid(), dict(WORKER_ENV)),
         )
@@ -242,23 +282,42 @@ class ProcessExecutor(_Closing):
         An exception raised by ``fn`` is re-raised here (after cancelling this map's pending
         items); ``KeyboardInterrupt`` and ``SystemExit`` close the executor.
         """
+        from collections import deque
         from concurrent.futures import FIRST_COMPLETED, Future, wait
+        from concurrent.futures.process import BrokenProcessPool
 
         if self._closed or self._pool is None:
             raise RuntimeError("this ProcessExecutor is closed")
-        pool = self._pool
         window = 2 * self.workers
         pending: dict[Future[R], int] = {}
-        next_index = 0
+        queue = deque(range(len(items)))  # items to submit; a retried one goes first
+        attempts: dict[int, int] = {}
         try:
-            while next_index < len(items) or pending:
-                while next_index < len(items) and len(pending) < window:
-                    pending[pool.submit(_call, fn, items[next_index])] = next_index
-                    next_index += 1
+            while queue or pending:
+                while queue and len(pending) < window:
+                    index = queue.popleft()
+                    pending[self._pool.submit(_call, fn, items[index])] = index
                 done, _ = wait(pending, return_when=FIRST_COMPLETED)
+                lost: list[int] = []
+                if any(isinstance(f.exception(), BrokenProcessPool) for f in done):
+                    # a worker died: the pool fails every item in flight, now or soon
+                    done, _ = wait(pending)
                 for future in sorted(done, key=pending.__getitem__):
                     index = pending.pop(future)
+                    if isinstance(future.exception(), BrokenProcessPool):
+                        lost.append(index)
+                        continue
                     yield index, future.result()
+                if lost:
+                    self._restart()
+                    for index in lost:
+                        attempts[index] = attempts.get(index, 0) + 1
+                        if attempts[index] > self.max_retries:
+                            raise WorkerLostError(index, attempts[index])
+                        self.lost.append(index)
+                        if self.on_retry is not None:
+                            self.on_retry(index, attempts[index] + 1)
+                    queue.extendleft(reversed(lost))
         except (KeyboardInterrupt, SystemExit):
             self.close()
             raise
@@ -266,10 +325,19 @@ class ProcessExecutor(_Closing):
             for future in pending:
                 future.cancel()
 
+    def _restart(self) -> None:
+        """Replace a broken pool by a fresh one (its processes reaped first)."""
+        self._shutdown(self._pool)
+        self._pool = self._new_pool()
+
     def close(self) -> None:
         """Cancel pending items, kill the worker processes and reap them (idempotent)."""
         self._closed = True
         pool, self._pool = self._pool, None
+        self._shutdown(pool)
+
+    @staticmethod
+    def _shutdown(pool: Any) -> None:
         if pool is None:
             return
         processes = list((getattr(pool, "_processes", None) or {}).values())

@@ -41,7 +41,12 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["PolicyController", "read_policy_controller", "run_policy_cells"]
+__all__ = [
+    "PolicyController",
+    "check_policy_controller",
+    "read_policy_controller",
+    "run_policy_cells",
+]
 
 POLICY_PREFIX = "policy:"
 """How a campaign's ``controller`` names a trained policy (``"policy:runs/ppo_capsize"``)."""
@@ -56,18 +61,49 @@ class PolicyController:
     path : str
         Absolute path of its ``model.zip``.
     digest : str
-        SHA-256 of ``model.zip``, ``vecnormalize.pkl`` (if any) and the training env's id and
-        kwargs: what a cell id hashes (not the path).
+        SHA-256 of ``model.zip``, its observation statistics (``vecnormalize.npz``, else a
+        legacy ``vecnormalize.pkl``, if any) and the training env's id and kwargs: what a cell
+        id hashes (not the path).
     env_id : str
         The environment it was trained in.
     env_kwargs : dict
         Its training kwargs.
+    model_sha256 : str
+        SHA-256 of ``model.zip`` alone: what every worker checks before loading the model
+        (:func:`check_policy_controller` trusts it once, in the driver).
     """
 
     path: str
     digest: str
     env_id: str
     env_kwargs: dict
+    model_sha256: str = ""
+
+
+def check_policy_controller(controller: PolicyController, *, trusted: bool = False) -> None:
+    """Refuse, before any cell runs, a policy this installation neither trained nor ships.
+
+    Loading an SB3 model (and a legacy pickled ``vecnormalize.pkl``) runs code from the file
+    (:mod:`ship_gym.envs.policy_trust`); ``trusted`` is the user's opt-in
+    (``ship-gym campaign run --trust-policy``). The workers then load only a file whose
+    SHA-256 is ``controller.model_sha256``.
+
+    Raises
+    ------
+    UntrustedPolicyError
+        A ValueError naming the file and the opt-in.
+    """
+    from ship_gym.envs.policy_trust import UntrustedPolicyError, check_policy_trust
+
+    zip_path = Path(controller.path)
+    check_policy_trust(zip_path.read_bytes(), zip_path, trusted=trusted)
+    legacy = zip_path.parent / "vecnormalize.pkl"
+    if not trusted and legacy.is_file() and not (zip_path.parent / "vecnormalize.npz").is_file():
+        raise UntrustedPolicyError(
+            f"{legacy}: observation statistics saved as a pickle (by an earlier version), which "
+            "runs any code its author put in it when loaded; if you trust where it came from, "
+            "pass --trust-policy to ship-gym campaign run; see docs/security.md"
+        )
 
 
 def read_policy_controller(path: str | os.PathLike[str], *, field: str) -> PolicyController:
@@ -123,10 +159,20 @@ def read_policy_controller(path: str | os.PathLike[str], *, field: str) -> Polic
             "CapsizeAvoidance)"
         )
     digest = hashlib.sha256()
-    for part in (zip_path, zip_path.parent / "vecnormalize.pkl"):
-        digest.update(part.read_bytes() if part.is_file() else b"-")
+    model = zip_path.read_bytes()
+    statistics = zip_path.parent / "vecnormalize.npz"
+    if not statistics.is_file():
+        statistics = zip_path.parent / "vecnormalize.pkl"
+    for part in (model, statistics.read_bytes() if statistics.is_file() else b"-"):
+        digest.update(part)
     digest.update(json.dumps({"id": env_id, "kwargs": kwargs}, sort_keys=True).encode())
-    return PolicyController(str(zip_path.resolve()), digest.hexdigest(), env_id, kwargs)
+    return PolicyController(
+        str(zip_path.resolve()),
+        digest.hexdigest(),
+        env_id,
+        kwargs,
+        model_sha256=hashlib.sha256(model).hexdigest(),
+    )
 
 
 def _task_parameters(env_id: str) -> Mapping[str, inspect.Parameter]:
@@ -210,8 +256,12 @@ def run_policy_cells(
     dt_s: float,
     integrator: str,
     capsize_angle_deg: float,
+    trusted: bool = False,
 ) -> list[dict]:
     """Run the seeds of one cell group under the policy; one outcome dict per seed.
+
+    The model is loaded only if its SHA-256 is still ``controller.model_sha256`` (the file the
+    driver checked, :func:`check_policy_controller`).
 
     Parameters
     ----------
@@ -235,6 +285,9 @@ def run_policy_cells(
         ``"holloway"`` or ``"rk4"``.
     capsize_angle_deg : float
         |φ| counted as capsize [deg].
+    trusted : bool
+        The user's opt-in (``--trust-policy``): also allows a legacy pickled
+        ``vecnormalize.pkl``.
 
     Returns
     -------
@@ -258,7 +311,9 @@ def run_policy_cells(
         integrator=integrator,
         capsize_angle_deg=capsize_angle_deg,
     )
-    policy = load_policy(controller.path)
+    policy = load_policy(
+        controller.path, trusted=trusted, expected_sha256=controller.model_sha256 or None
+    )
     n = len(seeds)
     control_dt = float(
         kwargs.get("control_dt_s", _task_parameters(controller.env_id)["control_dt_s"].default)

@@ -83,6 +83,12 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         help="run saved models with --set only, not the env settings they were trained with "
         "(by default a model's training [env] kwargs are applied, then --set)",
     )
+    p.add_argument(
+        "--trust-policy",
+        action="store_true",
+        help="load model:PATH files neither trained here nor shipped (loading a "
+        "stable-baselines3 file runs code from it: only for files you trust; docs/security.md)",
+    )
     p.set_defaults(func=_cmd_evaluate)
 
     from ship_gym.agents.benchmark import TASKS
@@ -238,6 +244,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
         progress=not args.no_progress,
         use_training_env=not args.no_training_env,
         report=print,
+        trusted=args.trust_policy,
     )
     out = write_results(results, args.out, plot=not args.no_plot)
     width = max(len(k) for k in results["policies"]) + 2

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -43,6 +44,12 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     r.add_argument("--workers", type=n_jobs, default=1, help="parallel workers")
     r.add_argument("--address", default=None, help="Ray cluster address (--executor ray)")
     r.add_argument("--no-progress", action="store_true", help="no progress bar")
+    r.add_argument(
+        "--trust-policy",
+        action="store_true",
+        help="load a controller = 'policy:…' neither trained here nor shipped (loading a "
+        "stable-baselines3 file runs code from it: only for files you trust; docs/security.md)",
+    )
     r.set_defaults(func=cmd_campaign_run)
 
     q = actions.add_parser("report", help="capsize probabilities with confidence intervals")
@@ -124,6 +131,7 @@ def cmd_campaign_run(args: argparse.Namespace) -> int:
             workers=args.workers,
             address=args.address,
             progress=not args.no_progress,
+            trust_policy=args.trust_policy,
         )
     except ImportError as exc:
         raise CLIError(str(exc)) from None
@@ -136,6 +144,10 @@ def cmd_campaign_run(args: argparse.Namespace) -> int:
 
 def _fmt(x: float) -> str:
     return "     -" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:6.1f}"
+
+
+def _stderr(message: str) -> None:
+    print(f"ship-gym campaign: {message}", file=sys.stderr, flush=True)
 
 
 def cmd_campaign_report(args: argparse.Namespace) -> int:
@@ -152,7 +164,7 @@ def cmd_campaign_report(args: argparse.Namespace) -> int:
         if source.is_dir():
             if args.store:
                 raise CLIError("--store is for a campaign FILE.toml, not a store folder")
-            records, missing, title = read_store(source), 0, str(source)
+            records, missing, title = read_store(source, report=_stderr), 0, str(source)
         else:
             spec = _read(args.source)
             store = Path(args.store) if args.store else _default_store(source)
@@ -161,7 +173,7 @@ def cmd_campaign_report(args: argparse.Namespace) -> int:
                     f"no store {str(store)!r} for {args.source}; run "
                     f"`ship-gym campaign run {args.source}` first"
                 )
-            records, missing = campaign_records(spec, store)
+            records, missing = campaign_records(spec, store, report=_stderr)
             title = spec.name or source.stem
     except (ImportError, ValueError) as exc:
         raise CLIError(str(exc)) from None

@@ -26,9 +26,13 @@ Rules shared by every environment (DESIGN.md §4):
   :attr:`BatchedTask.observations_bounded` is true clips them itself), so a task documents
   bounds its physical values stay inside in normal operation;
 * capsize is ``terminated``; the time limit is ``truncated`` (``TimeLimit`` for the single env,
-  the vector env's own step counter); the single env never resets itself;
+  the vector env's own step counter); a capsize on the last step of the limit is both, in both;
+  the single env never resets itself;
 * all randomness comes from the episode's generator (``self.np_random`` for the single env, one
-  generator per episode for the vector env), so ``reset(seed=s)`` reproduces the same sea.
+  generator per episode for the vector env), so ``reset(seed=s)`` reproduces the same sea; an
+  automatic reset continues that generator where the single env's ``reset()`` would (in
+  ``NEXT_STEP`` mode the waiting step's draws are undone), so the vector env is Gymnasium's
+  ``SyncVectorEnv`` of single envs bit for bit in both autoreset modes.
 
 Autoreset of the vector env follows Gymnasium 1.x: ``AutoresetMode.NEXT_STEP`` (default; the
 step after an episode ended resets it, returns its first observation with reward 0 and ignores
@@ -556,7 +560,14 @@ class TaskVectorEnv(_TaskView, VectorEnv):
         if not self._has_reset:
             raise RuntimeError("call reset() before step()")
         a = validate_actions(actions, (self.num_envs, *self.single_action_space.shape))
+        # an episode waiting for its NEXT_STEP reset is stepped with the others, but what the
+        # task draws for it (sensor noise) is undone: its generator enters the reset where the
+        # single env's reset() finds it, at the end of the last real step
+        pending = np.flatnonzero(self._pending_reset).tolist()
+        saved = [self._rng(k).bit_generator.state for k in pending]
         result = self.task.step(a)
+        for k, state in zip(pending, saved, strict=True):
+            self._rng(k).bit_generator.state = state
         stepped = ~self._pending_reset
         self._steps += stepped  # +1 where stepped
         reward = result.reward()
@@ -567,7 +578,8 @@ class TaskVectorEnv(_TaskView, VectorEnv):
         reward, terminated = _guard_divergence(reward, terminated, diverged_info)
         truncated = np.zeros(self.num_envs, dtype=bool)
         if self.max_episode_steps is not None:
-            truncated = (self._steps >= self.max_episode_steps) & ~terminated
+            # TimeLimit's rule: the last step is truncated even when it also terminates
+            truncated = self._steps >= self.max_episode_steps
 
         # the Gymnasium vector-info layout (_put): infos[key] and its own copy of the mask
         infos: dict[str, Any] = {}

@@ -68,10 +68,11 @@ def _tiny_config(tmp_path, **training):
 
 def test_smoke_train_tiny_ppo_saves_model_config_normalizer(tmp_path):
     out = train(config_from_mapping(_tiny_config(tmp_path)))
-    for name in ("model.zip", "config.toml", "vecnormalize.pkl", "summary.json"):
+    for name in ("model.zip", "config.toml", "vecnormalize.npz", "summary.json"):
         assert (out / name).exists(), name
+    assert not (out / "vecnormalize.pkl").exists()  # no pickle written
     assert any((out / "tensorboard").rglob("events.out.tfevents*"))
-    policy = load_policy(out)
+    policy = load_policy(out)  # no opt-in: its digest was recorded by this training
     assert policy.obs_normalizer is not None
     action, _ = policy.predict(np.zeros((3, 4), np.float32))
     assert action.shape == (3, 1)
@@ -138,3 +139,58 @@ def test_smoke_cli_train_and_evaluate(tmp_path, capsys):
     printed = capsys.readouterr().out
     assert "capsize_rate" in printed
     assert (tmp_path / "ev" / "evaluation.csv").exists()
+
+
+@pytest.mark.parametrize(
+    ("section", "key", "value", "expected"),
+    [
+        ("hyperparameters", "batch_size", 0, r"algorithm\.hyperparameters\.batch_size = 0; exp"),
+        ("hyperparameters", "batch_size", 1, r"batch_size = 1; expected an integer in \[2, "),
+        ("hyperparameters", "n_steps", 0, r"algorithm\.hyperparameters\.n_steps = 0; expected"),
+        ("hyperparameters", "gamma", 2, r"algorithm\.hyperparameters\.gamma = 2; .* \(0, 1\]"),
+        ("hyperparameters", "gamma", True, r"gamma = True; expected a number in \(0, 1\]"),
+        ("hyperparameters", "learning_rate", "fast", r"learning_rate = 'fast'; expected a num"),
+        ("hyperparameters", "n_epochs", 2.5, r"n_epochs = 2\.5; expected an integer"),
+        ("hyperparameters", "ent_coef", -1.0, r"ent_coef = -1\.0; expected a number >= 0"),
+        ("hyperparameters", "n_step", 64, r"hyperparameters\.n_step: not a PPO hyperparameter"),
+        ("algorithm", "policy", "CnnPolicy", r"algorithm\.policy = 'CnnPolicy'; expected one of"),
+        ("training", "total_timesteps", True, r"training\.total_timesteps = True; expected an i"),
+        ("training", "total_timesteps", 1e20, r"total_timesteps = 1e\+20; expected an integer"),
+        ("training", "total_timesteps", 0, r"training\.total_timesteps = 0; expected"),
+    ],
+)
+def test_bad_training_values_are_refused_at_read_time_naming_the_key(
+    tmp_path, section, key, value, expected
+):
+    data = _tiny_config(tmp_path)
+    if section == "hyperparameters":
+        data["algorithm"]["hyperparameters"][key] = value
+    else:
+        data[section][key] = value
+    with pytest.raises(ValueError, match=expected):
+        config_from_mapping(data)
+
+
+def test_a_one_step_rollout_is_refused_and_integral_floats_are_counts(tmp_path):
+    data = _tiny_config(tmp_path)
+    data["env"]["n_envs"] = 1
+    data["algorithm"]["hyperparameters"]["n_steps"] = 1
+    with pytest.raises(ValueError, match=r"n_steps = 1 with env\.n_envs = 1: .* >= 2"):
+        config_from_mapping(data)
+    data = _tiny_config(tmp_path)
+    data["training"]["total_timesteps"] = 1e3  # TOML 1e3 is a float
+    assert config_from_mapping(data).total_timesteps == 1000
+
+
+def test_train_cli_names_a_bad_hyperparameter_without_a_traceback(tmp_path, capsys):
+    from ship_gym.cli import main
+
+    config = tmp_path / "bad.toml"
+    config.write_text(
+        '[env]\nid = "ship_gym/RollOneDOF-v0"\n[algorithm.hyperparameters]\nbatch_size = 0\n',
+        encoding="utf-8",
+    )
+    assert main(["train", str(config), "--no-progress"]) == 1
+    err = capsys.readouterr().err
+    assert "algorithm.hyperparameters.batch_size = 0" in err and "internal error" not in err
+    assert "Traceback" not in err

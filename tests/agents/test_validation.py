@@ -115,8 +115,8 @@ def test_the_run_keeps_the_best_checkpoint_with_its_statistics(tmp_path, residua
     assert summary["model"] == "best"
     assert summary["best_timesteps"] == rows[best]["timesteps"]
     assert summary["seeds"] == [900, 902]
-    # model.zip (with vecnormalize.pkl) is the best evaluated policy, final_model.zip (with
-    # final_vecnormalize.pkl) the last: both reproduce their recorded validation return
+    # model.zip (with vecnormalize.npz) is the best evaluated policy, final_model.zip (with
+    # final_vecnormalize.npz) the last: both reproduce their recorded validation return
     assert _validation_return(out) == pytest.approx(rows[best]["mean_return"], rel=1e-9)
     last = rows[-1]["mean_return"]
     assert _validation_return(out / "final_model.zip") == pytest.approx(last, rel=1e-9)

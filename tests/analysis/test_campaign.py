@@ -346,3 +346,126 @@ def test_cli_run_then_report_from_the_toml(tmp_path, capsys):
     assert "ran 1 cells" in out and "ran 0 cells" in out and "1 already in the store" in out
     assert main(["campaign", "report", str(path)]) == 0
     assert "1 runs in 1 cells" in capsys.readouterr().out
+
+
+def run_task_killed_once(marker: str, task):
+    """campaign.run_task, but the first call SIGKILLs its own worker (a marker remembers)."""
+    import os
+    import signal
+
+    if not os.path.exists(marker):
+        Path(marker).write_text("killed")
+        os.kill(os.getpid(), signal.SIGKILL)
+    return cp.run_task(task)
+
+
+def test_a_killed_local_worker_is_retried_and_the_run_finishes(serial, tmp_path):
+    import functools
+
+    from ship_gym.analysis import executors as ex
+
+    marker = str(tmp_path / "killed")
+
+    class KillOnce(ex.ProcessExecutor):
+        def map_unordered(self, fn, items):
+            return super().map_unordered(functools.partial(run_task_killed_once, marker), items)
+
+    _, ref = serial
+    spec = cp.read_campaign(_write(tmp_path))
+    said: list[str] = []
+    with KillOnce(workers=2) as executor:
+        res = cp.run_campaign(
+            spec, tmp_path / "store", executor=executor, progress=False, report=said.append
+        )
+    assert res.n_run == 4 and _outputs(res.records) == _outputs(ref.records)
+    assert any("a worker process died running task" in m and "ship s175" in m for m in said)
+    assert "were run again" in said[-1] and "every cell finished" in said[-1]
+
+
+def run_task_always_killed(task):
+    import os
+    import signal
+
+    os.kill(os.getpid(), signal.SIGKILL)
+
+
+def test_a_task_whose_worker_always_dies_is_a_clear_error_naming_its_cells(tmp_path):
+    from ship_gym.analysis import executors as ex
+
+    class KillAlways(ex.ProcessExecutor):
+        def map_unordered(self, fn, items):
+            return super().map_unordered(run_task_always_killed, items)
+
+    spec = cp.read_campaign(_write(tmp_path, headings="[90]"))
+    with (
+        KillAlways(workers=1, max_retries=1) as executor,
+        pytest.raises(cp.CampaignError, match=r"task \w+ \(ship s175, .*heading 90 deg.*seeds "
+                      r"\[0, 1\]\): its worker process died 2 times .*rerun to resume"),
+    ):  # fmt: skip
+        cp.run_campaign(
+            spec, tmp_path / "store", executor=executor, progress=False, report=lambda m: None
+        )
+
+
+def test_the_store_ignores_foreign_and_changed_shards_naming_them(serial, tmp_path, capsys):
+    import shutil
+
+    from ship_gym.cli import main
+
+    spec, res = serial
+    store = tmp_path / "store"
+    shutil.copytree(res.store, store)
+    lines = (store / st.MANIFEST).read_text().splitlines()
+    assert json.loads(lines[0])["campaign"] == st.campaign_digest(c.cell_id for c in cp.cells(spec))
+    # a shard of another campaign (other headings) copied in: ignored, named
+    other = cp.read_campaign(_write(tmp_path, "other.toml", headings="[30]", seeds=1))
+    other_store = tmp_path / "other_store"
+    cp.run_campaign(other, other_store, progress=False)
+    foreign = next(other_store.glob("part-*.parquet"))
+    shutil.copy(foreign, store / foreign.name)
+    said: list[str] = []
+    records = st.read_store(store, report=said.append)
+    assert len(records) == 4 and all(r["heading_deg"] != 30.0 for r in records)
+    assert len(said) == 1 and foreign.name in said[0] and "not in the store's manifest" in said[0]
+    assert main(["campaign", "report", str(store)]) == 0
+    captured = capsys.readouterr()
+    assert f"{foreign.name}: not in the store's manifest" in captured.err
+    assert "4 runs" in captured.out
+    # a shard of the store changed since it was written: ignored, named; its cells re-run
+    own = sorted(p for p in store.glob("part-*.parquet") if p.name != foreign.name)[0]
+    own.write_bytes(foreign.read_bytes())
+    said.clear()
+    assert len(st.read_store(store, report=said.append)) == 2
+    assert any(own.name in m and "changed since" in m for m in said)
+    again = cp.run_campaign(spec, store, progress=False, report=said.append)
+    assert again.n_run == 2 and len(again.records) == 4
+    assert _outputs(again.records) == _outputs(res.records)
+
+
+def test_a_store_of_an_earlier_version_is_adopted_and_a_damaged_shard_is_named(
+    serial, tmp_path, capsys
+):
+    import shutil
+
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from ship_gym.cli import main
+
+    spec, res = serial
+    store = tmp_path / "legacy"
+    shutil.copytree(res.store, store)
+    (store / st.MANIFEST).unlink()  # as written before the manifest existed
+    assert len(st.read_store(store)) == 4
+    again = cp.run_campaign(spec, store, progress=False)  # adopts its shards, runs nothing
+    assert again.n_run == 0 and len(again.records) == 4
+    assert sum('"adopted": true' in line for line in (store / st.MANIFEST).open()) == 2
+    # an earlier version's store with a shard holding only cell ids: the file is named
+    (store / st.MANIFEST).unlink()
+    shard = sorted(store.glob("part-*.parquet"))[0]
+    pq.write_table(pa.table({"cell_id": ["abc"]}), shard)
+    with pytest.raises(ValueError, match=rf"{shard.name}: a record \(cell 'abc'\) has no ship"):
+        st.read_store(store)
+    assert main(["campaign", "report", str(store)]) == 1
+    err = capsys.readouterr().err
+    assert shard.name in err and "internal error" not in err

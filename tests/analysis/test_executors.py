@@ -46,6 +46,25 @@ def fail(item: int) -> None:
     raise ValueError(f"bad item {item}")
 
 
+def die_once(item: tuple[int, str]) -> int:
+    """SIGKILL its own worker the first time (a marker file remembers), return the item after."""
+    import signal
+
+    value, marker = item
+    if marker and not os.path.exists(marker):
+        Path(marker).write_text("died once")
+        os.kill(os.getpid(), signal.SIGKILL)
+    return value
+
+
+def die_always(item: int) -> int:
+    import signal
+
+    if item == 1:
+        os.kill(os.getpid(), signal.SIGKILL)
+    return item
+
+
 def _descendants() -> list[int]:
     """Live (non-zombie) descendants of this process, from /proc (Linux); multiprocessing's
     resource tracker (one per interpreter, it exits with this process) is not counted."""
@@ -239,3 +258,28 @@ def test_ray_close_leaves_no_process(ray_executor):  # last: shuts the module's 
     assert not ray.is_initialized()
     left = _wait_no_descendants(executor_preexisting, timeout=60.0)
     assert left == [], f"left behind: {left} (Ray's processes were {sorted(before_ray)})"
+
+
+@linux_only
+def test_processes_retry_the_items_of_a_killed_worker(tmp_path):
+    # a worker killed mid-item (SIGKILL, out of memory) breaks the pool: it is restarted, the
+    # items in flight run again, the map finishes and the loss is reported
+    marker = str(tmp_path / "died")
+    items = [(0, ""), (1, marker), (2, ""), (3, "")]
+    retried: list[tuple[int, int]] = []
+    with ex.ProcessExecutor(workers=2, on_retry=lambda i, a: retried.append((i, a))) as procs:
+        results = dict(procs.map_unordered(die_once, items))
+        assert results == {0: 0, 1: 1, 2: 2, 3: 3}
+        assert 1 in procs.lost and (1, 2) in retried
+        assert dict(procs.map_unordered(abs, [-5])) == {0: 5}  # the new pool keeps working
+
+
+@linux_only
+def test_processes_give_up_on_an_item_whose_worker_always_dies():
+    before = set(_descendants())
+    with ex.ProcessExecutor(workers=1, max_retries=2) as procs:
+        with pytest.raises(ex.WorkerLostError, match=r"item 1: its worker process died 3 times"):
+            dict(procs.map_unordered(die_always, [0, 1, 2]))
+    assert _wait_no_descendants(before, timeout=5.0) == []
+    with pytest.raises(ValueError, match="max_retries"):
+        ex.ProcessExecutor(workers=1, max_retries=-1)

@@ -533,7 +533,9 @@ def test_evaluate_applies_the_training_env_settings_and_says_so(monkeypatch):
             }
 
     seen = {}
-    monkeypatch.setattr(ev, "_policy_factory", lambda spec, device="cpu": (spec, Fake()))
+    monkeypatch.setattr(
+        ev, "_policy_factory", lambda spec, device="cpu", trusted=False: (spec, Fake())
+    )
 
     def fake_run(env_id, policy, seeds, kwargs, **k):
         seen[k["label"]] = dict(kwargs)
