@@ -37,8 +37,8 @@ exactly. The transfer function is the **zero-speed** X_D, looked up at
 * ``frequency="wave"`` (default): ω' = ω. The zero-speed transfer function of the incident
   wave's own pattern k(ω) (exact at zero speed); the force oscillates at ω_e through the folding.
   This is the linearisation of :mod:`ship_gym.hydro.forward_speed`, which the frequency-domain
-  solver (:mod:`ship_gym.hydro.rao`) shares: no forward-speed correction of the scattered
-  potential.
+  solver (:mod:`ship_gym.hydro.rao`) shares; with ``speed_terms`` other than ``"none"`` the
+  force is then taken to speed in relative-motion form (its eq. 6; below).
 * ``frequency="encounter"``: ω' = ω_e, the older approximation "the hull responds to the
   encountered wave as it would at zero speed to a wave of that frequency": it imposes the
   pattern k(ω_e) = ω_e²/g on the hull, a factor (ω_e/ω)² off (2.6 in head seas at Fn 0.25 near

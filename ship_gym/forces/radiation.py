@@ -11,9 +11,11 @@ The database is a **zero-speed** BEM database (``attrs["forward_speed"] = 0``). 
 takes it to speed by the linearisation of :mod:`ship_gym.hydro.forward_speed`: body-axis ν_p
 (the relative normal velocity, ν_p = ẋ + U L x) and Kirchhoff's moment u Lᵀ(A(∞) E ν_p + λ) of
 the radiated momentum — Salvesen–Tuck–Faltinsen's forward-speed terms without end terms, with
-the zero-speed kernels (no speed-dependent kernels or fits). The constant-coefficient model
-(Matusiak's case 2) keeps its zero-speed coefficients at the encounter frequency, without that
-moment.
+the zero-speed kernels (no speed-dependent kernels or fits), high-passed below ω_c
+(``speed_cutoff``, its eq. 5: two more states) so that the steady momentum has no moment; the
+diffraction model adds the same moment of the scattered flow's momentum (its eq. 4). The
+constant-coefficient model (Matusiak's case 2) keeps its zero-speed coefficients at the
+encounter frequency, without that moment.
 
 Sign conventions (DESIGN.md §3, :mod:`ship_gym.hydro.retardation`)
 -----------------------------------------------------------------
