@@ -152,6 +152,31 @@ def _learning_setup(raw: dict) -> dict:
     return setup
 
 
+def read_summary(run: Path) -> dict[str, Any]:
+    """A run's ``summary.json`` (written by :func:`ship_gym.agents.train.train`).
+
+    Raises
+    ------
+    ValueError
+        A missing, damaged or foreign file, naming it and what is wrong.
+    """
+    path = run / "summary.json"
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        raise ValueError(f"{path}: not a readable run summary ({exc})") from None
+    if not isinstance(data, dict):
+        raise ValueError(f"{path}: holds a {type(data).__name__}; expected a JSON object")
+    for key in ("num_timesteps", "wall_time_s"):
+        value = data.get(key)
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise ValueError(
+                f"{path}: {key} = {value!r}; expected a number (the summary `ship-gym train` "
+                "writes; delete the run folder to train it again)"
+            )
+    return data
+
+
 def _run_is_complete(run: Path, config: Any) -> bool:
     """A finished training run of ``config`` (:class:`~ship_gym.agents.train.TrainConfig`) with ≥
     its ``total_timesteps``: the same env id and version, algorithm, hyperparameters, residual,
@@ -165,9 +190,9 @@ def _run_is_complete(run: Path, config: Any) -> bool:
         trained = read_run_config(run / "config.toml")
         return (
             _learning_setup(trained) == _learning_setup(dict(config.raw))
-            and int(json.loads(summary.read_text())["num_timesteps"]) >= config.total_timesteps
+            and int(read_summary(run)["num_timesteps"]) >= config.total_timesteps
         )
-    except (ValueError, KeyError, OSError):
+    except (ValueError, KeyError, OSError):  # a damaged run is trained again
         return False
 
 
@@ -323,8 +348,11 @@ def run_benchmark(
     previous = out / "results.json"
     if previous.is_file():  # other tasks' results stay (a task is re-run as a whole)
         try:
-            results["tasks"] = dict(json.loads(previous.read_text()).get("tasks", {}))
-        except ValueError:
+            earlier = json.loads(previous.read_text(encoding="utf-8"))
+            if not isinstance(earlier, dict) or not isinstance(earlier.get("tasks", {}), dict):
+                raise ValueError("not a results table")
+            results["tasks"] = dict(earlier.get("tasks", {}))
+        except (ValueError, UnicodeDecodeError):
             report(f"{previous}: unreadable, rewritten")
     kept = _kept_configs(tasks, configs, results["tasks"], previous, n_seeds=n_seeds,
                          timesteps=timesteps, episodes=episodes, seed=seed)  # fmt: skip
@@ -371,7 +399,7 @@ def run_benchmark(
                 else:
                     report(f"{name}/{config_name}/seed{k}: training {config.total_timesteps} steps")
                     train(config)
-                summary = json.loads((run / "summary.json").read_text())
+                summary = read_summary(run)
                 ev = evaluate_policies(
                     task.env_id, [f"model:{run}"], n_episodes, seed, progress=progress
                 )
@@ -381,7 +409,7 @@ def run_benchmark(
                     "training_seed": k,
                     "timesteps": summary["num_timesteps"],
                     "wall_s": summary["wall_time_s"],
-                    "steps_per_s": summary["steps_per_s"],
+                    "steps_per_s": summary.get("steps_per_s"),
                 }
                 chosen = summary.get("validation", {})
                 if chosen.get("model") == "best":

@@ -28,8 +28,10 @@ from pathlib import Path
 from typing import Any
 
 __all__ = [
+    "MEMORY_LIMIT_BYTES",
     "CLIError",
     "add_overrides_argument",
+    "check_memory",
     "count",
     "finite_float",
     "irregular_sea",
@@ -51,6 +53,36 @@ GRAVITY = 9.80665
 
 class CLIError(Exception):
     """A user error found by a command (bad value, bad path): message only, exit status 1."""
+
+
+MEMORY_LIMIT_BYTES = 4 * 2**30
+"""Largest memory [bytes] a command's arrays may be estimated to take before it allocates them."""
+
+
+def check_memory(estimate_bytes: float, what: str, expected: str) -> None:
+    """Refuse, before any allocation, work whose arrays are estimated past
+    :data:`MEMORY_LIMIT_BYTES`.
+
+    Parameters
+    ----------
+    estimate_bytes : float
+        The estimated memory [bytes].
+    what : str
+        The options as the user typed them and what they size, e.g.
+        ``"--t-max 1e+07 with --dt 0.05: 2e+08 time steps"``.
+    expected : str
+        What to change, e.g. ``"a shorter --t-max or a larger --dt"``.
+
+    Raises
+    ------
+    CLIError
+        Naming the options, the estimate and the limit [GiB].
+    """
+    if estimate_bytes > MEMORY_LIMIT_BYTES:
+        raise CLIError(
+            f"{what} would need ≈ {estimate_bytes / 2**30:.3g} GiB of memory; expected at most "
+            f"{MEMORY_LIMIT_BYTES / 2**30:g} GiB: {expected}"
+        )
 
 
 def _number(text: str) -> float:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import tempfile
 import time
@@ -16,6 +17,7 @@ from ship_gym.cli.common import (
     add_overrides_argument,
     add_ship_argument,
     bounded_float,
+    check_memory,
     min_count,
     n_jobs,
     parse_overrides,
@@ -158,6 +160,16 @@ def _cmd_kernels(args: argparse.Namespace) -> int:
             f"{args.database} has no infinite-frequency added mass A(∞) (omega = inf entry); "
             "the kernels and their reconstruction need it"
         )
+    # K(t) and L(t): one float64 per time step and DOF pair each (what fails first when t_max /
+    # dt is huge); the kernels' own work arrays are of the same order
+    steps = math.floor(args.t_max / args.dt) + 1
+    n_pairs = int(np.prod(np.shape(arr.added_mass)[1:]))
+    check_memory(
+        2.0 * steps * n_pairs * 8.0,
+        f"--t-max {args.t_max:g} with --dt {args.dt:g}: {steps:.3g} time steps of {n_pairs} DOF "
+        "pairs",
+        "a shorter --t-max or a larger --dt",
+    )
     kernels = compute_kernels(
         arr.omega,
         arr.added_mass,

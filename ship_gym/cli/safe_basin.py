@@ -22,6 +22,7 @@ from ship_gym.cli.common import (
     CLIError,
     add_ship_argument,
     bounded_float,
+    check_memory,
     finite_float,
     min_count,
     nonnegative_float,
@@ -86,6 +87,13 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=_cmd_safe_basin)
 
 
+_BYTES_PER_CELL = {
+    True: 12 * 8.0,  # Edith–Terkol: roll and rate, the RK4 stages and a work array, float64
+    False: 4096.0,  # a ship of the batched 6-DOF engine (measured ≈ 3 kB per ship, S175)
+}
+"""Memory per grid cell [bytes] (key: the model is the 1-DOF Edith–Terkol equation)."""
+
+
 def _cmd_safe_basin(args: argparse.Namespace) -> int:
     from ship_gym.analysis import safe_basin as sb
     from ship_gym.roll.equation import RollEquation
@@ -102,6 +110,12 @@ def _cmd_safe_basin(args: argparse.Namespace) -> int:
     progress = not args.no_progress
     separatrix = None
     curve = None
+    n_grid = args.grid if args.grid is not None else (101 if args.model == "edith-terkol" else 21)
+    check_memory(
+        float(n_grid) ** 2 * _BYTES_PER_CELL[args.model == "edith-terkol"],
+        f"--grid {n_grid}: {float(n_grid) ** 2:.3g} initial conditions integrated together",
+        "a smaller --grid",
+    )
     if args.model == "edith-terkol":
         n = 101 if args.grid is None else args.grid
         roll_max = 1.0 if args.roll_max is None else args.roll_max

@@ -233,3 +233,27 @@ def test_shipped_policies_reproduce_their_rows_of_the_table(name, folder, task):
     assert rows[0]["mean_return"] == pytest.approx(metrics["mean_return"], rel=2.5e-2)
     assert rows[0]["metric"] == pytest.approx(metrics[task["metric"]], rel=2.5e-2)
     assert rows[0]["capsized"] == round(metrics["capsize_rate"] * task["episodes"])
+
+
+@pytest.mark.parametrize(
+    ("content", "expected"),
+    [
+        (b"\x00\xff random bytes", r"summary\.json: not a readable run summary"),
+        (b'{"num_timesteps": 10', r"summary\.json: not a readable run summary"),
+        (b"[1, 2]", r"summary\.json: holds a list; expected a JSON object"),
+        (b'{"num_timesteps": null, "wall_time_s": 1.0}', r"num_timesteps = None; expected a"),
+    ],
+)
+def test_a_damaged_run_summary_is_named_and_its_run_is_not_reused(tmp_path, content, expected):
+    from ship_gym.agents.benchmark import _run_is_complete, read_summary
+    from ship_gym.agents.train import config_from_mapping
+
+    run = tmp_path / "run"
+    run.mkdir()
+    (run / "summary.json").write_bytes(content)
+    (run / "model.zip").write_bytes(b"")
+    (run / "config.toml").write_text('[env]\nid = "ship_gym/RollOneDOF-v0"\n')
+    with pytest.raises(ValueError, match=expected):
+        read_summary(run)
+    config = config_from_mapping({"env": {"id": "ship_gym/RollOneDOF-v0"}})
+    assert _run_is_complete(run, config) is False

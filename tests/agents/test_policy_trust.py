@@ -198,3 +198,33 @@ def test_the_npz_statistics_match_sb3_and_damaged_files_are_named(tmp_path):
     np.savez(bad, mean=np.array([object()], dtype=object))
     with pytest.raises(ValueError, match="not observation statistics"):
         read_obs_normalizer(bad)
+
+
+@pytest.mark.parametrize(
+    ("damage", "expected"),
+    [
+        ("random", r"vecnormalize\.npz: not observation statistics saved by ship-gym train"),
+        ("truncated", r"vecnormalize\.npz: not observation statistics saved by ship-gym train"),
+        ("shape", r"vecnormalize\.npz: statistics of shape \(3,\), the model observes shape"),
+    ],
+)
+def test_evaluate_names_a_damaged_vecnormalize_file(tmp_path, capsys, damage, expected):
+    run = tmp_path / "run"
+    shutil.copytree(ROLL, run)
+    stats = run / "vecnormalize.npz"
+    if damage == "random":
+        stats.write_bytes(np.random.default_rng(0).bytes(300))
+    elif damage == "truncated":
+        stats.write_bytes(stats.read_bytes()[:200])
+    else:
+        np.savez(stats, mean=np.zeros(3), var=np.ones(3), count=1.0, clip_obs=10.0,
+                 epsilon=1e-8, norm_obs=True)  # fmt: skip
+    argv = ["evaluate", "--env", "ship_gym/RollStabilization-v2", "--policies", f"model:{run}",
+            "--episodes", "1", "--max-steps", "2", "--out", str(tmp_path / "out"), "--no-plot",
+            "--no-progress"]  # fmt: skip
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    assert "internal error" not in err
+    import re
+
+    assert re.search(expected, err), err

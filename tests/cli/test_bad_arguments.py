@@ -692,3 +692,24 @@ def test_json_payload_still_written(tmp_path):
     out = tmp_path / "deep" / "hull.json"
     assert main(["hull", "box_barge", "--plot", "", "--json", str(out)]) == 0
     assert "gmt_m" in json.loads(out.read_text())
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [
+        (["kernels", "s175", "--t-max", "1e7"], "--t-max 1e+07 with --dt 0.05: 2e+08 time steps"),
+        (["kernels", "s175", "--dt", "1e-6"], "--t-max 60 with --dt 1e-06: 6e+07 time steps"),
+        (["safe-basin", "--grid", "100000"], "--grid 100000: 1e+10 initial conditions"),
+        (["safe-basin", "--model", "s175", "--grid", "3000"], "--grid 3000: 9e+06 initial"),
+    ],
+)
+def test_sizes_past_the_memory_limit_are_refused_before_allocation(
+    argv, expected, capsys, tmp_path
+):
+    import ship_gym.cli as cli
+
+    out = ["--plot", str(tmp_path / "p.png")]
+    assert cli.main([*argv, *out]) == 1
+    err = capsys.readouterr().err
+    assert expected in err and "GiB of memory; expected at most 4 GiB" in err
+    assert "internal error" not in err
