@@ -69,7 +69,7 @@ Press, ch. 3 and 7 (encounter frequency, equations of motion in regular waves).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -289,6 +289,50 @@ def _radiation_at(arrays: HydroArrays, omega_c: np.ndarray, method: Interpolatio
     return _spline(w_grid, a, method)(w_eval), _spline(w_grid, b, method)(w_eval)
 
 
+class _WaveCase(NamedTuple):
+    """The checked arguments of one regular-wave problem at speed."""
+
+    omega: np.ndarray
+    beta: float
+    speed: float
+    terms: SpeedTerms
+    cutoff: float
+    omega_e: np.ndarray
+    arrays: HydroArrays
+
+
+def _wave_case(
+    database: xr.Dataset,
+    omega: ArrayLike,
+    heading: float,
+    forward_speed: float,
+    speed_terms: SpeedTerms,
+    speed_cutoff: float,
+    interpolation: Interpolation,
+    frequency: Frequency | None = None,
+) -> _WaveCase:
+    """Check the arguments shared by :func:`response_amplitude_operator` and
+    :func:`excitation_force` (``frequency`` only where given) and read the database's arrays
+    at the heading; ValueError naming the bad one."""
+    if not isinstance(database, xr.Dataset):
+        raise ValueError(f"database must be an xarray.Dataset; got {type(database).__name__}")
+    if frequency is not None and frequency not in ("encounter", "wave"):
+        raise ValueError(f"frequency must be 'encounter' or 'wave'; got {frequency!r}")
+    if interpolation not in ("linear", "cubic"):
+        raise ValueError(f"interpolation must be 'linear' or 'cubic'; got {interpolation!r}")
+    terms = check_speed_terms(speed_terms)
+    if "excitation_force" not in database:
+        raise ValueError("database has no 'excitation_force'; expected a diffraction database")
+    w = _frequencies(omega)
+    beta = float(np.mod(_scalar("heading", heading, "rad"), _TWO_PI))
+    speed = _scalar("forward_speed", forward_speed, "m/s")
+    cutoff = check_speed_cutoff(speed_cutoff)
+    g = float(database.attrs.get("g", GRAVITY))
+    arrays = as_arrays(_headings_for(database, beta))
+    w_e = encounter_frequency(w, speed, beta, g)
+    return _WaveCase(w, beta, speed, terms, cutoff, w_e, arrays)
+
+
 # ------------------------------------------------------------------------------ public API
 def response_amplitude_operator(
     database: xr.Dataset,
@@ -359,23 +403,12 @@ def response_amplitude_operator(
         Bad arguments, frequencies or headings outside the database, a missing mass or stiffness
         matrix, or a singular system (e.g. ω_e = 0 with a free DOF that has no restoring).
     """
-    if not isinstance(database, xr.Dataset):
-        raise ValueError(f"database must be an xarray.Dataset; got {type(database).__name__}")
-    if frequency not in ("encounter", "wave"):
-        raise ValueError(f"frequency must be 'encounter' or 'wave'; got {frequency!r}")
-    if interpolation not in ("linear", "cubic"):
-        raise ValueError(f"interpolation must be 'linear' or 'cubic'; got {interpolation!r}")
-    terms = check_speed_terms(speed_terms)
-    if "excitation_force" not in database:
-        raise ValueError("database has no 'excitation_force'; expected a diffraction database")
-    w = _frequencies(omega)
-    beta = float(np.mod(_scalar("heading", heading, "rad"), _TWO_PI))
-    speed = _scalar("forward_speed", forward_speed, "m/s")
+    case = _wave_case(
+        database, omega, heading, forward_speed, speed_terms, speed_cutoff, interpolation,
+        frequency,
+    )  # fmt: skip
+    w, beta, speed, terms, cutoff, w_e, arrays = case
     mask = dof_mask(free_dofs)
-    g = float(database.attrs.get("g", GRAVITY))
-
-    ds = _headings_for(database, beta)
-    arrays = as_arrays(ds)
     if mass_matrix is None and arrays.inertia_matrix is None:
         raise ValueError("database has no 'inertia_matrix'; pass mass_matrix (6, 6) [SI]")
     if hull_hydrostatic_stiffness is None and arrays.hydrostatic_stiffness is None:
@@ -389,8 +422,6 @@ def response_amplitude_operator(
     c = c + _matrix("restoring_extra", restoring_extra, None)
     b_extra = _matrix("extra_damping", extra_damping, None)
 
-    cutoff = check_speed_cutoff(speed_cutoff)
-    w_e = encounter_frequency(w, speed, beta, g)
     w_c = np.abs(w_e) if frequency == "encounter" else w
     f_exc = _excitation_at_speed(arrays, beta, w, w_e, speed, terms, cutoff, interpolation)
     a, b = _radiation_at(arrays, w_c, interpolation)  # (n, 6, 6)
@@ -443,20 +474,9 @@ def excitation_force(
     numpy.ndarray
         (n, 6) complex [N/m, N·m/m], capytaine's time convention, the crest at O at t = 0.
     """
-    if not isinstance(database, xr.Dataset):
-        raise ValueError(f"database must be an xarray.Dataset; got {type(database).__name__}")
-    if interpolation not in ("linear", "cubic"):
-        raise ValueError(f"interpolation must be 'linear' or 'cubic'; got {interpolation!r}")
-    terms = check_speed_terms(speed_terms)
-    if "excitation_force" not in database:
-        raise ValueError("database has no 'excitation_force'; expected a diffraction database")
-    w = _frequencies(omega)
-    beta = float(np.mod(_scalar("heading", heading, "rad"), _TWO_PI))
-    speed = _scalar("forward_speed", forward_speed, "m/s")
-    cutoff = check_speed_cutoff(speed_cutoff)
-    g = float(database.attrs.get("g", GRAVITY))
-    arrays = as_arrays(_headings_for(database, beta))
-    w_e = encounter_frequency(w, speed, beta, g)
+    w, beta, speed, terms, cutoff, w_e, arrays = _wave_case(
+        database, omega, heading, forward_speed, speed_terms, speed_cutoff, interpolation
+    )
     return _excitation_at_speed(arrays, beta, w, w_e, speed, terms, cutoff, interpolation)
 
 
