@@ -166,13 +166,9 @@ def kirchhoff_parameters(
 @nb.njit(cache=True, nogil=True)
 def _speed_correct_columns(w_wave, w_enc, kirchhoff, grid, table, out):  # pragma: no cover
     """:func:`~ship_gym.hydro.forward_speed.speed_correct_element` for every row of ``out``
-    (n, 8) when enabled, else zero moment columns."""
+    (n, 8)."""
     for j in range(out.shape[0]):
-        if kirchhoff[3] > 0.0:
-            speed_correct_element(w_wave[j], w_enc[j], kirchhoff, grid, table, out, j)
-        else:
-            out[j, N_DOF] = 0.0j
-            out[j, N_DOF + 1] = 0.0j
+        speed_correct_element(w_wave[j], w_enc[j], kirchhoff, grid, table, out, j)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -684,11 +680,7 @@ def transfer_at_heading(heading, speed, diff, out):  # pragma: no cover - compil
         w_enc = omega_c[j] - wavenumber[j] * speed * math.cos(b)
         w = w_enc if encounter else omega_c[j]
         n_above += transfer_element(w, b, table, beta_ext, omega_db, out, j)
-        if kirchhoff[3] > 0.0:
-            speed_correct_element(omega_c[j], w_enc, kirchhoff, grid, mass, out, j)
-        else:
-            out[j, N_DOF] = 0.0j
-            out[j, N_DOF + 1] = 0.0j
+        speed_correct_element(omega_c[j], w_enc, kirchhoff, grid, mass, out, j)
     return n_above
 
 

@@ -474,10 +474,11 @@ def speed_correct_element(w_wave, w_enc, kirchhoff, grid, table, out, j):  # pra
     """Take the zero-speed diffraction force out[j, :6] (at the wave frequency) to speed by
     eq. (6) and write the scattered momentum's moment factors (eq. 4–5) in out[j, 6:8].
 
-    ``kirchhoff`` = (Lᵀ[pitch, heave], Lᵀ[yaw, sway], ω_c); ``grid``, ``table`` from
-    :func:`complex_mass_table`. At zero speed (w_enc == w_wave) X_D is left bit for bit.
+    ``kirchhoff`` = (Lᵀ[pitch, heave], Lᵀ[yaw, sway], ω_c, enabled); ``grid``, ``table`` from
+    :func:`complex_mass_table`. At zero speed (w_enc == w_wave) X_D is left bit for bit; not
+    enabled (0), X_D is left as it is and the moment factors are zero.
     """
-    if not w_wave > 0.0:
+    if not (kirchhoff[3] > 0.0 and w_wave > 0.0):
         out[j, 6] = 0.0j
         out[j, 7] = 0.0j
         return
@@ -540,7 +541,7 @@ def diffraction_at_speed(
     if w.shape[0] != f.shape[0] or np.any(~(w > 0.0)):
         raise ValueError(f"omega must hold {f.shape[0]} wave frequencies > 0 [rad/s]; got {w}")
     pitch, yaw = momentum_coefficients(speed_terms)
-    kirchhoff = np.array([pitch, yaw, check_speed_cutoff(cutoff, "cutoff")])
+    kirchhoff = np.array([pitch, yaw, check_speed_cutoff(cutoff, "cutoff"), 1.0])
     grid, table = complex_mass
     work = np.zeros((f.shape[0], N_DOF + 2), dtype=complex)
     work[:, :N_DOF] = f
