@@ -38,9 +38,9 @@ class EnvEntry:
         vector env counts its own steps).
     version : int
         The id's ``-vN`` (bumped when dynamics, observations, rewards or termination change).
-    earlier : tuple of (int, dict)
-        Earlier versions kept registered, each with the keyword arguments that reproduce it
-        (its published results and shipped policies were made with it).
+    earlier : tuple of (int, tuple of (str, object))
+        Earlier versions kept registered, each with the keyword arguments (name, value pairs)
+        that reproduce it (its published results and shipped policies were made with it).
     """
 
     name: str
