@@ -43,6 +43,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
+from ship_gym.agents.roll_risk import RollResponse, response_of, roll_exceedance_probability
 from ship_gym.conventions import GRAVITY
 
 __all__ = [
@@ -538,14 +539,31 @@ class IMOGuidanceMaster(Baseline):
             "telegraph": ("telegraph",),
         }.items():
             self._idx[key] = lay.observation(names)
-        self._idx["turn"] = lay.action(("heading set-point change",))
-        self._idx["engine"] = lay.action(("telegraph change",))
-        self._heading_rate = math.radians(
-            _action_scale(lay.action_names[self._idx["turn"]], r"±([0-9.]+) deg", "turn rate")
-        )
-        self._telegraph_step = _action_scale(
-            lay.action_names[self._idx["engine"]], r"±([0-9.]+) ×", "telegraph step"
-        )
+        self._absolute = any("course set-point" in a for a in lay.action_names)
+        if self._absolute:  # HeavyWeather: course and telegraph set-points
+            self._idx["turn"] = lay.action(("course set-point",))
+            self._idx["engine"] = lay.action(("telegraph set-point",))
+            self._max_deviation = math.radians(
+                _action_scale(lay.action_names[self._idx["turn"]], r"±([0-9.]+) deg", "range")
+            )
+            found = re.search(
+                r"= ([0-9.]+)\.\.1\.\.([0-9.]+) ×", lay.action_names[self._idx["engine"]]
+            )
+            if found is None:
+                raise ValueError(
+                    f"action {lay.action_names[self._idx['engine']]!r} does not state its "
+                    "telegraph range (expected '= LOW..1..HIGH ×')"
+                )
+            self._telegraph_limits = (float(found.group(1)), float(found.group(2)))
+        else:  # CapsizeAvoidance: set-point and telegraph changes per step
+            self._idx["turn"] = lay.action(("heading set-point change",))
+            self._idx["engine"] = lay.action(("telegraph change",))
+            self._heading_rate = math.radians(
+                _action_scale(lay.action_names[self._idx["turn"]], r"±([0-9.]+) deg", "turn rate")
+            )
+            self._telegraph_step = _action_scale(
+                lay.action_names[self._idx["engine"]], r"±([0-9.]+) ×", "telegraph step"
+            )
         for key in ("resonance_band", "switch_margin", "zone_margin"):
             value = getattr(self, key)
             if not (isinstance(value, int | float) and 0.0 <= value < 1.0):
@@ -621,10 +639,7 @@ class IMOGuidanceMaster(Baseline):
         get = self._observed
         beta = np.arctan2(get(obs, "sin"), get(obs, "cos"))
         u, f = get(obs, "u"), np.maximum(get(obs, "telegraph"), 1e-3)
-        period, length, height = get(obs, "period"), get(obs, "length"), get(obs, "height")
-        roll_period = np.maximum(get(obs, "roll_period"), 1e-3)
         deviation, setpoint = get(obs, "deviation"), get(obs, "setpoint")
-        lpp = GRAVITY * period**2 / (2.0 * math.pi) / np.maximum(length, 1e-6)
         new = state[:, 2] == 0.0  # first step of an episode: plan = what it does now
         alpha = min(1.0, self.layout.control_dt / self.speed_time_constant_s)
         per_telegraph = np.where(new, u / f, (1 - alpha) * state[:, 2] + alpha * u / f)
@@ -636,10 +651,7 @@ class IMOGuidanceMaster(Baseline):
         speed = per_telegraph[:, None, None] * fr
         beta_new = beta[:, None, None] - (d - deviation[:, None, None])
         beta_new = (beta_new + math.pi) % (2 * math.pi) - math.pi
-        zones = self.dangerous_zones(
-            speed, beta_new, period[:, None, None], length[:, None, None],
-            height[:, None, None], roll_period[:, None, None], lpp[:, None, None],
-        )  # fmt: skip
+        zones = self._danger(obs, speed, beta_new, (slice(None), None, None))
         progress = speed * np.cos(d)
         # the best candidate: fewest zones, then most progress
         score = progress - 1e6 * zones
@@ -652,9 +664,7 @@ class IMOGuidanceMaster(Baseline):
         # the current plan, judged the same way
         plan_beta = (beta - (plan_d - deviation) + math.pi) % (2 * math.pi) - math.pi
         plan_speed = per_telegraph * plan_f
-        plan_zones = self.dangerous_zones(
-            plan_speed, plan_beta, period, length, height, roll_period, lpp
-        )
+        plan_zones = self._danger(obs, plan_speed, plan_beta, (slice(None),))
         plan_progress = plan_speed * np.cos(plan_d)
         switch = (best_zones < plan_zones) | (
             (best_zones == plan_zones)
@@ -663,14 +673,167 @@ class IMOGuidanceMaster(Baseline):
         plan_d = np.where(switch, best_d, plan_d)
         plan_f = np.where(switch, best_f, plan_f)
         actions = np.zeros((obs.shape[0], len(self.layout.action_names)))
-        actions[:, self._idx["turn"]] = (plan_d - setpoint) / self._heading_rate
-        actions[:, self._idx["engine"]] = (plan_f - f) / self._telegraph_step
+        if self._absolute:
+            from ship_gym.envs.heavy_weather import action_of_telegraph
+
+            actions[:, self._idx["turn"]] = plan_d / self._max_deviation
+            actions[:, self._idx["engine"]] = action_of_telegraph(plan_f, *self._telegraph_limits)
+        else:
+            actions[:, self._idx["turn"]] = (plan_d - setpoint) / self._heading_rate
+            actions[:, self._idx["engine"]] = (plan_f - f) / self._telegraph_step
         return actions, np.column_stack([plan_d, plan_f, per_telegraph])
+
+    def _danger(
+        self, obs: NDArray, speed: NDArray, beta: NDArray, index: tuple[Any, ...]
+    ) -> NDArray:
+        """Danger of each candidate (speed U' [m/s], relative heading β' [rad]; the observed
+        sea and loading of each ship broadcast by ``index``): Σ of the zone weights."""
+        get = self._observed
+        period, length = get(obs, "period"), get(obs, "length")
+        height = get(obs, "height")
+        roll_period = np.maximum(get(obs, "roll_period"), 1e-3)
+        lpp = GRAVITY * period**2 / (2.0 * math.pi) / np.maximum(length, 1e-6)
+        return self.dangerous_zones(
+            speed, beta, period[index], length[index], height[index], roll_period[index],
+            lpp[index],
+        )  # fmt: skip
+
+
+@dataclass
+class KeepCourse(ZeroAction):
+    """Keep the voyage course and the service rpm (the zero action of HeavyWeather): the master
+    who does nothing about the weather."""
+
+    name: ClassVar[str] = "keep"
+
+
+@dataclass
+class PolarGuidanceMaster(IMOGuidanceMaster):
+    """The master of polar operational guidance for HeavyWeather (:mod:`ship_gym.agents.roll_risk`).
+
+    Every control step, for every candidate (course deviation d, telegraph f) of the grid, the
+    probability P (eq. 3) that the roll exceeds ``critical_roll_deg`` within
+    ``exposure_s`` in the sea the wave radar estimates (Hs, Tp, mean direction, spreading),
+    at the candidate's speed and relative heading, with the observed roll period of the
+    loading; a candidate is safe when P ≤ ``risk_limit`` and it lies in none of the IMO
+    guidance's zones of the nonlinear modes (surf-riding/broaching, successive high waves,
+    parametric roll in head/following seas within ``parametric_sector_deg``). Among the safe
+    candidates the one of most progress U cos d; if none, the least dangerous (Σ of the zone
+    weights + the relative excess of P over the limit). Plans are kept as in
+    :class:`~ship_gym.agents.baselines.IMOGuidanceMaster` (``switch_margin``).
+
+    The defaults are tuned by ``scripts/tune_heavy_weather_masters.py`` on training seeds
+    (``docs/benchmarks/heavy_weather_masters.json``).
+
+    Parameters
+    ----------
+    ship : str
+        The ship whose response is tabulated (bundled name or ship file; the env's ship).
+    critical_roll_deg : float
+        Critical roll angle φ_c [deg].
+    exposure_s : float
+        Exposure time T of eq. (3) [s].
+    risk_limit : float
+        Largest acceptable P [-].
+    damping_ratio : float
+        ζ_v of the equivalent-linear viscous roll damping [-].
+    parametric_sector_deg : float
+        Parametric roll is considered within this angle of head and following seas [deg].
+    parametric_height_ratio : float
+        ... and in seas above this Hs/L [-] (ABS's guide on parametric roll asks for waves of
+        a length and height that change the waterplane enough).
+    """
+
+    name: ClassVar[str] = "polar"
+    ship: str = "s175"
+    critical_roll_deg: float = 25.0
+    exposure_s: float = 3600.0
+    risk_limit: float = 0.05
+    damping_ratio: float = 0.05
+    parametric_sector_deg: float = 45.0
+    parametric_height_ratio: float = 0.03
+    resonance_band: float = 0.2
+    zone_margin: float = 0.1
+    beam_limit_deg: float = 90.0
+    zone_weights: tuple[float, float, float, float, float] = (3.0, 0.5, 0.0, 1.0, 0.0)
+    deviation_step_deg: float = 15.0
+    telegraph_grid: float = 0.1
+    _response: RollResponse | None = field(default=None, init=False, repr=False)
+
+    def _bind(self) -> None:
+        super()._bind()
+        for key, names in {
+            "hs": ("significant wave height",),
+            "spreading": ("wave spreading exponent",),
+        }.items():
+            self._idx[key] = self.layout.observation(names)
+        for key in ("risk_limit",):
+            value = getattr(self, key)
+            if not (isinstance(value, int | float) and 0.0 < value < 1.0):
+                raise ValueError(f"PolarGuidanceMaster.{key} must lie in (0, 1), got {value!r}")
+        for key in ("critical_roll_deg", "parametric_sector_deg"):
+            value = getattr(self, key)
+            if not (isinstance(value, int | float) and 0.0 < value <= 90.0):
+                raise ValueError(f"PolarGuidanceMaster.{key} must lie in (0, 90], got {value!r}")
+        if not (isinstance(self.exposure_s, int | float) and 0.0 < self.exposure_s <= 1e6):
+            raise ValueError(
+                f"PolarGuidanceMaster.exposure_s must lie in (0, 1e6] s, got {self.exposure_s!r}"
+            )
+        if not (isinstance(self.damping_ratio, int | float) and 0.0 <= self.damping_ratio < 1.0):
+            raise ValueError(
+                f"PolarGuidanceMaster.damping_ratio must lie in [0, 1), got {self.damping_ratio!r}"
+            )
+        self._response = response_of(self.ship)
+
+    def dangerous_zones(
+        self, speed: NDArray, beta: NDArray, period: NDArray, length: NDArray, height: NDArray,
+        roll_period: NDArray, lpp: NDArray,
+    ) -> NDArray:  # fmt: skip
+        """The IMO zones, parametric roll only within ``parametric_sector_deg`` of head and
+        following seas (where the guidance places it) and above ``parametric_height_ratio``."""
+        zones = super().dangerous_zones(speed, beta, period, length, height, roll_period, lpp)
+        celerity = GRAVITY * period / (2.0 * math.pi)
+        with np.errstate(divide="ignore"):
+            encounter = period / np.abs(1.0 - speed * np.cos(beta) / celerity)
+        parametric = np.abs(2.0 * encounter / roll_period - 1.0) < self.resonance_band
+        axis = np.minimum(np.abs(beta), math.pi - np.abs(beta))
+        outside = axis > math.radians(self.parametric_sector_deg)
+        low = height <= self.parametric_height_ratio
+        return zones - self.zone_weights[3] * (parametric & (outside | low))
+
+    def _danger(
+        self, obs: NDArray, speed: NDArray, beta: NDArray, index: tuple[Any, ...]
+    ) -> NDArray:
+        zones = super()._danger(obs, speed, beta, index)
+        assert self._response is not None
+        get = self._observed
+        m0, m2 = self._response.spectral_moments(
+            hs=get(obs, "hs")[index],
+            tp=get(obs, "period")[index],
+            spreading_s=np.maximum(get(obs, "spreading"), 0.5)[index],
+            beta=beta,
+            speed=speed,
+            roll_period=np.maximum(get(obs, "roll_period"), 1.0)[index],
+            damping_ratio=self.damping_ratio,
+        )
+        risk = roll_exceedance_probability(
+            m0, m2, math.radians(self.critical_roll_deg), self.exposure_s
+        )
+        excess = np.maximum(risk - self.risk_limit, 0.0) / self.risk_limit
+        return zones + excess
 
 
 BASELINES: Mapping[str, type[Baseline]] = {
     cls.name: cls
-    for cls in (ZeroAction, PIDAutopilot, RollFinController, RideController, IMOGuidanceMaster)
+    for cls in (
+        ZeroAction,
+        KeepCourse,
+        PIDAutopilot,
+        RollFinController,
+        RideController,
+        IMOGuidanceMaster,
+        PolarGuidanceMaster,
+    )
 }
 """Baselines by short name (as used by ``ship-gym evaluate --policies``)."""
 
@@ -706,5 +869,21 @@ def make_baseline(name: str, env: Any, *, env_id: str | None = None, **gains: fl
     if env_id is not None:
         layout = dataclasses.replace(layout, env_id=env_id)
     env_name = (layout.env_id or "").split("/")[-1].split("-v")[0]
-    merged = {**DEFAULT_GAINS.get((name, env_name), {}), **gains}
-    return BASELINES[name](layout=layout, **merged)
+    merged: dict[str, Any] = {**DEFAULT_GAINS.get((name, env_name), {}), **gains}
+    cls = BASELINES[name]
+    if "ship" in cls.parameter_names() and "ship" not in merged:
+        ship = _env_ship(env)
+        if ship is not None:  # a master that models the ship models the env's own
+            merged["ship"] = ship
+    return cls(layout=layout, **merged)
+
+
+def _env_ship(env: Any) -> str | None:
+    """The ship (bundled name or ship file) of a ship_gym env, None if it has none."""
+    try:
+        task = _env_attr(env, "task")
+    except ValueError:
+        return None
+    setup = getattr(task, "setup", None)
+    hull = getattr(setup, "hull", None)
+    return hull if isinstance(hull, str) else None

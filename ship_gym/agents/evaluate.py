@@ -108,6 +108,10 @@ class EpisodeStats:
         Summed Safe-RL cost [-].
     rms_vertical_acceleration_mps2 : NDArray
         RMS vertical acceleration at the passenger point [m/s²] (NaN when the env shows none).
+    voyage_progress : NDArray
+        HeavyWeather's task metric at the episode's end, ``info["voyage_progress"]``: distance
+        made good along the voyage course / the nominal voyage, 0 if capsized [-] (NaN when the
+        env gives none).
     """
 
     seeds: NDArray
@@ -119,6 +123,7 @@ class EpisodeStats:
     rms_action: NDArray
     cost: NDArray
     rms_vertical_acceleration_mps2: NDArray
+    voyage_progress: NDArray | None = None
 
 
 class _SquaredSum:
@@ -257,6 +262,7 @@ def run_episodes(
         lengths = np.zeros(n, dtype=np.int64)
         capsized = np.zeros(n, dtype=bool)
         cost = np.zeros(n)
+        progress_end = np.full(n, np.nan)
         head_sq = np.zeros(n)
         act_sq = np.zeros(n)
         state = None
@@ -285,6 +291,8 @@ def run_episodes(
             vertical.add(infos, obs_before, active)
             done = (np.asarray(terminated) | np.asarray(truncated)) & active
             if done.any():
+                if "voyage_progress" in infos:
+                    progress_end = np.where(done, infos["voyage_progress"], progress_end)
                 flag = infos.get("capsized", terminated)
                 capsized |= done & np.asarray(flag, dtype=bool) & np.asarray(terminated, bool)
                 active &= ~done
@@ -307,6 +315,7 @@ def run_episodes(
             rms_action=np.sqrt(act_sq / lengths),
             cost=cost,
             rms_vertical_acceleration_mps2=vertical.rms(),
+            voyage_progress=progress_end,
         )
 
 
@@ -328,6 +337,9 @@ def summarize(stats: EpisodeStats) -> dict[str, float]:
         "std_return": float(np.std(stats.returns)),
         "mean_cost": float(np.mean(stats.cost)),
         "episodes": float(len(stats.returns)),
+        "voyage_progress": (
+            math.nan if stats.voyage_progress is None else mean(stats.voyage_progress)
+        ),
     }
 
 

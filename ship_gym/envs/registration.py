@@ -75,6 +75,7 @@ ENTRIES: tuple[EnvEntry, ...] = (
     EnvEntry("RideControl", "ride_control", 1000, 3, _RADIATION_ONLY),
     EnvEntry("CapsizeAvoidance", "capsize_avoidance", 1500, 3, _RADIATION_ONLY),
     EnvEntry("RollOneDOF", "roll_one_dof", 1000, 0),
+    EnvEntry("HeavyWeather", "heavy_weather", 360, 0),
 )
 ENV_IDS: tuple[str, ...] = tuple(e.id for e in ENTRIES)
 """The current id of every environment."""

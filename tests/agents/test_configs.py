@@ -15,6 +15,7 @@ from ship_gym.envs import ENV_IDS, REGISTERED_IDS
 SHIPPED = [
     "ppo_capsize_avoidance",
     "ppo_course_keeping",
+    "ppo_heavy_weather",
     "ppo_lagrangian_capsize_avoidance",
     "ppo_residual_course_keeping",
     "ppo_roll_one_dof",

@@ -19,6 +19,7 @@ import pytest
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
 from ship_gym.envs.capsize_avoidance import CapsizeAvoidanceEnv, CapsizeAvoidanceVectorEnv
 from ship_gym.envs.course_keeping import CourseKeepingEnv, CourseKeepingVectorEnv
+from ship_gym.envs.heavy_weather import HeavyWeatherEnv, HeavyWeatherVectorEnv
 from ship_gym.envs.ride_control import RideControlEnv, RideControlVectorEnv
 from ship_gym.envs.roll_stabilisation import RollStabilizationEnv, RollStabilizationVectorEnv
 
@@ -85,6 +86,10 @@ SHIP_ENVS: dict[str, ShipEnvCase] = {
     ),
     "RideControl": ShipEnvCase(
         RideControlEnv, RideControlVectorEnv, ("vertical", "effort", "foil_rate", "capsize")
+    ),
+    # short-crested seas, GM drawn per episode, set-point actions
+    "HeavyWeather": ShipEnvCase(
+        HeavyWeatherEnv, HeavyWeatherVectorEnv, ("progress", "dangerous_roll", "capsize")
     ),
 }
 
