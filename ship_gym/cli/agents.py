@@ -67,7 +67,8 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--policies",
         default="zero",
-        help="comma-separated: zero, pid, fins, ride, model:RUN_DIR_OR_ZIP (default: zero)",
+        help="comma-separated: zero, pid, fins, ride, imo-guidance (CapsizeAvoidance, "
+        "HeavyWeather), keep, polar (HeavyWeather), model:RUN_DIR_OR_ZIP (default: zero)",
     )
     p.add_argument("--episodes", type=count, default=20, help="episodes per policy")
     p.add_argument("--seed", type=seed, default=0, help="episode k is reset with seed + k")
@@ -212,7 +213,10 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
     _check_env_id(args.env)
     policies = [p.strip() for p in args.policies.split(",") if p.strip()]
     if not policies:
-        raise CLIError("--policies: expected at least one of zero, pid, fins, ride, model:PATH")
+        raise CLIError(
+            "--policies: expected at least one of zero, pid, fins, ride, imo-guidance, keep, "
+            "polar, model:PATH"
+        )
     try:
         policy_labels(policies)
     except ValueError as exc:

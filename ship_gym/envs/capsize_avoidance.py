@@ -233,14 +233,7 @@ class CapsizeAvoidanceTask(ShipEnvTask):
         self._wavelength_ratio = np.zeros(n)
         self._height_ratio = np.zeros(n)
         self._roll_period = np.zeros(n)
-        self._nominal_roll_period = self._loading_roll_period()
-
-    def _loading_roll_period(self) -> float:
-        """Undamped roll natural period T_R = 2π/ω_φ [s] of the nominal loading (its own
-        stiffness and inertia, A44 at ω_φ: :func:`ship_gym.engine.ship.roll_natural_frequency`)."""
-        from ship_gym.engine.ship import database_of, roll_natural_frequency
-
-        return 2.0 * math.pi / roll_natural_frequency(self.sim.hull, database_of(self.setup))
+        self._nominal_roll_period = self.nominal_roll_period()
 
     # ------------------------------------------------------------------ hooks
     def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:

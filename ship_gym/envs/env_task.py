@@ -371,6 +371,13 @@ class ShipEnvTask(ShipTask, abc.ABC):
         )
         self.sim.parallel = num_threads > 1
 
+    def nominal_roll_period(self) -> float:
+        """Undamped roll natural period T_R = 2π/ω_φ [s] of the nominal loading (its own
+        stiffness and inertia, A44 at ω_φ: :func:`ship_gym.engine.ship.roll_natural_frequency`)."""
+        from ship_gym.engine.ship import database_of, roll_natural_frequency
+
+        return 2.0 * math.pi / roll_natural_frequency(self.sim.hull, database_of(self.setup))
+
     # ------------------------------------------------------------------ shared reward terms
     def roll_term(self, stats: StepStatistics, weight: float, scale: float) -> NDArray:
         """−weight · mean(φ²)/scale² over the physics steps of the control step (scale [rad])."""

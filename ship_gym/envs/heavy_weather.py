@@ -283,16 +283,7 @@ class HeavyWeatherTask(ShipEnvTask):
             spreading_range=spreading_range,
             n_components=n_wave_components,
             ramp_time=wave_ramp_time_s,
-            keywords=(
-                "height_ratio_range",
-                "wavelength_ratio_range",
-                "wave_heading_range_deg",
-                "n_wave_components",
-                "gamma",
-                "spreading_range",
-                "wave_ramp_time_s",
-            ),
-        )
+        )  # its default keywords are this task's argument names
         super().__init__(
             num_envs,
             rudder="autopilot",
@@ -327,13 +318,7 @@ class HeavyWeatherTask(ShipEnvTask):
         self._ms_pitch = np.zeros(n)  # running mean θ² [rad²] (sampled per control step)
         self._speed_made_good = np.zeros(n)  # running mean [m/s]
         self._distance = np.zeros(n)  # along the voyage course [m]
-        self._nominal_roll_period = self._loading_roll_period()
-
-    def _loading_roll_period(self) -> float:
-        """Undamped roll natural period T_R = 2π/ω_φ [s] of the nominal loading."""
-        from ship_gym.engine.ship import database_of, roll_natural_frequency
-
-        return 2.0 * math.pi / roll_natural_frequency(self.sim.hull, database_of(self.setup))
+        self._nominal_roll_period = self.nominal_roll_period()
 
     # ------------------------------------------------------------------ hooks
     def _reset_task(self, i: int, rng: np.random.Generator) -> dict[str, float]:
