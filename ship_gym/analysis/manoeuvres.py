@@ -69,8 +69,8 @@ from scipy.optimize import brentq
 
 from ship_gym.conventions import wrap_angle
 from ship_gym.engine.ship import ShipSetup, build_simulator, propeller_of, trim_shaft_speed
-from ship_gym.forces.propeller import Propeller, service_speed
-from ship_gym.ship import hull_of
+from ship_gym.forces.propeller import Propeller
+from ship_gym.ship import hull_of, load_ship
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -130,8 +130,8 @@ def trial_setup(
     hull : str
         Library hull.
     speed : float, optional
-        Test speed [m/s]; default the service speed Fn = 0.25 (:func:`service_speed`;
-        S175: 10.358 m/s).
+        Test speed [m/s]; default the ship's service speed (its ship file's ``[speed]``
+        ``service_mps`` / ``service_froude``, Fn 0.25 if it gives none; S175: 10.358 m/s).
     dt : float
         Physics time step [s] (0.1 s: the S175 trial metrics differ from dt = 0.05 s by
         < 0.01 %).
@@ -139,7 +139,7 @@ def trial_setup(
         Further :class:`ShipSetup` fields (e.g. ``rudder="autopilot"``, ``free_dofs``).
     """
     if speed is None:
-        speed = service_speed(hull_of(hull))
+        speed = load_ship(hull).service_speed
     kw = {
         "hull": hull,
         "speed": float(speed),
@@ -162,6 +162,20 @@ def _check_setup(setup: ShipSetup, rudder: str | None = "command") -> None:
         )
     if rudder is not None and setup.rudder != rudder:
         raise ValueError(f"this trial needs rudder={rudder!r}, got {setup.rudder!r}")
+
+
+def capsize_angle(setup: ShipSetup) -> float:
+    """The roll angle [rad] beyond which a trial counts as a capsize: the angle of vanishing
+    stability of the setup's loading (calm-water GZ at free sinkage and trim, ≤ 90°)."""
+    from ship_gym.envs.loading import loading_condition
+
+    return math.radians(loading_condition(setup).vanishing_angle_deg)
+
+
+def _capsized(sim: Simulator, limit: float) -> bool:
+    """|φ| beyond ``limit`` [rad] or a non-finite state."""
+    roll = float(sim.eta[3])
+    return not (math.isfinite(roll) and abs(roll) <= limit and np.all(np.isfinite(sim.nu)))
 
 
 def _has_actuator(sim: Simulator, name: str) -> str:
@@ -434,6 +448,13 @@ class TurningCircleResult:
     max_outward_heel_deg: float
     max_inward_heel_deg: float
     wall_time: float = math.nan
+    capsize_time: float = math.nan
+
+    @property
+    def capsized(self) -> bool:
+        """The ship heeled beyond the angle of vanishing stability (at :attr:`capsize_time` [s]
+        after the order; the trial stopped there)."""
+        return math.isfinite(self.capsize_time)
 
     @property
     def advance_over_L(self) -> float:
@@ -470,6 +491,8 @@ class TurningCircleResult:
             "steady_heel_deg": self.steady_roll_deg,
             "max_outward_heel_deg": self.max_outward_heel_deg,
             "max_inward_heel_deg": self.max_inward_heel_deg,
+            "capsized": self.capsized,
+            "capsize_time_s": self.capsize_time,
         }
 
 
@@ -498,6 +521,13 @@ class ZigzagResult:
     metrics: ZigzagMetrics
     initial_turning_distance: float
     wall_time: float = math.nan
+    capsize_time: float = math.nan
+
+    @property
+    def capsized(self) -> bool:
+        """The ship heeled beyond the angle of vanishing stability (at :attr:`capsize_time` [s]
+        after the first order; the trial stopped there)."""
+        return math.isfinite(self.capsize_time)
 
     @property
     def first_overshoot_deg(self) -> float:
@@ -525,6 +555,8 @@ class ZigzagResult:
             "overshoot_times_s": list(m.overshoot_times),
             "initial_turning_over_L": self.initial_turning_over_L,
             "max_heel_deg": float(np.abs(self.roll_deg).max()),
+            "capsized": self.capsized,
+            "capsize_time_s": self.capsize_time,
         }
 
 
@@ -664,10 +696,15 @@ def turning_circle(
     rec.record(order)
     bar = _progress(max_time, f"turning {rudder_deg:g}°", progress)
     target = math.radians(heading_change_deg)
+    limit = capsize_angle(setup)
+    capsize_time = math.nan
     sim.commands = {**sim.commands, "rudder_command": order}
     while side * rec.heading_change < target and sim.t - rec.t0 < max_time - 1e-9:
         sim.step()
         rec.record(order)
+        if _capsized(sim, limit):
+            capsize_time = sim.t - rec.t0
+            break
         if bar is not None:
             bar.update(round(sim.t - rec.t0) - bar.n)
     if bar is not None:
@@ -703,6 +740,7 @@ def turning_circle(
         max_outward_heel_deg=float(max(-roll.min(), 0.0)),
         max_inward_heel_deg=float(max(roll.max(), 0.0)),
         wall_time=time.perf_counter() - start,
+        capsize_time=capsize_time,
     )
 
 
@@ -757,11 +795,16 @@ def zigzag(
     track = 0.0
     last_xy = (float(sim.eta[0]), float(sim.eta[1]))
     bar = _progress(max_time, f"zig-zag {abs(rudder_deg):g}/{switch:g}", progress)
+    limit = capsize_angle(setup)
+    capsize_time = math.nan
     while sim.t - rec.t0 < max_time - 1e-9:
         sim.step({"rudder_command": side * direction * delta})
         track += math.hypot(sim.eta[0] - last_xy[0], sim.eta[1] - last_xy[1])
         last_xy = (float(sim.eta[0]), float(sim.eta[1]))
         rec.record(side * direction * delta)
+        if _capsized(sim, limit):
+            capsize_time = sim.t - rec.t0
+            break
         h = side * rec.heading_change
         if direction * h >= check:
             if not reversal_times:
@@ -794,6 +837,7 @@ def zigzag(
         metrics=metrics,
         initial_turning_distance=initial_distance,
         wall_time=time.perf_counter() - start,
+        capsize_time=capsize_time,
     )
 
 
@@ -1057,10 +1101,12 @@ class Criterion:
     limit: float
     unit: str
     reference: str
+    capsized: bool = False
 
     @property
     def passed(self) -> bool:
-        return bool(math.isfinite(self.value) and self.value <= self.limit)
+        """Met: a finite value within the limit, and the trial did not capsize the ship."""
+        return bool(not self.capsized and math.isfinite(self.value) and self.value <= self.limit)
 
     @property
     def margin(self) -> float:
@@ -1091,7 +1137,12 @@ def imo_criteria(
         if isinstance(res, TurningCircleResult) and abs(abs(res.rudder_order_deg) - 35.0) < 1e-9:
             rows.append(
                 Criterion(
-                    "advance", res.metrics.advance / length, ADVANCE_LIMIT, "L", "MSC.137(76) 5.3.1"
+                    "advance",
+                    res.metrics.advance / length,
+                    ADVANCE_LIMIT,
+                    "L",
+                    "MSC.137(76) 5.3.1",
+                    res.capsized,
                 )
             )
             rows.append(
@@ -1101,6 +1152,7 @@ def imo_criteria(
                     TACTICAL_DIAMETER_LIMIT,
                     "L",
                     "MSC.137(76) 5.3.1",
+                    res.capsized,
                 )
             )
         elif isinstance(res, ZigzagResult):
@@ -1113,6 +1165,7 @@ def imo_criteria(
                         INITIAL_TURNING_LIMIT,
                         "L",
                         "MSC.137(76) 5.3.2",
+                        res.capsized,
                     )
                 )
                 rows.append(
@@ -1122,6 +1175,7 @@ def imo_criteria(
                         first10,
                         "deg",
                         f"MSC.137(76) 5.4.1 (L/V = {lv:.2f} s)",
+                        res.capsized,
                     )
                 )
                 rows.append(
@@ -1131,6 +1185,7 @@ def imo_criteria(
                         second10,
                         "deg",
                         "MSC.137(76) 5.4.2",
+                        res.capsized,
                     )
                 )
             elif kind == (20.0, 20.0):
@@ -1141,6 +1196,7 @@ def imo_criteria(
                         first20,
                         "deg",
                         "MSC.137(76) 5.4.3",
+                        res.capsized,
                     )
                 )
     return tuple(rows)
@@ -1150,9 +1206,10 @@ def format_criteria(rows: Sequence[Criterion]) -> str:
     """A printable table of :func:`imo_criteria` rows."""
     lines = [f"{'criterion':44s} {'value':>9s} {'limit':>9s}  unit  result"]
     for c in rows:
+        verdict = "NOT MET (capsized)" if c.capsized else ("met" if c.passed else "NOT MET")
+        value = f"{'—':>9s}" if c.capsized else f"{c.value:9.3f}"
         lines.append(
-            f"{c.name:44s} {c.value:9.3f} {c.limit:9.3f}  {c.unit:4s}  "
-            f"{'met' if c.passed else 'NOT MET'}  ({c.reference})"
+            f"{c.name:44s} {value} {c.limit:9.3f}  {c.unit:4s}  {verdict}  ({c.reference})"
         )
     return "\n".join(lines)
 
@@ -1200,6 +1257,7 @@ def report(
             "limit": c.limit,
             "unit": c.unit,
             "met": c.passed,
+            "capsized": c.capsized,
             "reference": c.reference,
         }
         for c in rows

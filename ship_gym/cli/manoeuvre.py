@@ -1,14 +1,17 @@
 """``ship-gym manoeuvre``: IMO manoeuvring trials (turning circle, zig-zags) in calm water.
 
 Runs the trials of :mod:`ship_gym.analysis.manoeuvres` on the 6-DOF simulator at the test speed
-(default: the service speed Fn = 0.25), prints the metrics and the MSC.137(76) pass/fail table,
-and optionally writes the numbers (``--json``) and a figure (``--plot``).
+(default: the ship's service speed, from its ship file), prints the metrics and the MSC.137(76)
+pass/fail table — a trial that heels the ship beyond its angle of vanishing stability is
+reported as a capsize, and its criteria as not met — and optionally writes the numbers
+(``--json``) and a figure (``--plot``).
 """
 
 from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ship_gym.cli.common import (
     CLIError,
@@ -20,6 +23,10 @@ from ship_gym.cli.common import (
     write_json,
     write_or_rescue,
 )
+
+if TYPE_CHECKING:
+    from ship_gym.analysis.manoeuvres import TurningCircleResult, ZigzagResult
+    from ship_gym.engine.ship import ShipSetup
 
 TESTS = ("turning", "zigzag10", "zigzag20", "all")
 
@@ -33,7 +40,10 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--test", default="all", choices=TESTS, help="which trial(s) to run")
     add_ship_argument(p)
     p.add_argument(
-        "--speed", type=positive_float, default=None, help="test speed [m/s] (default: Fn = 0.25)"
+        "--speed",
+        type=positive_float,
+        default=None,
+        help="test speed [m/s] (default: the ship's service speed)",
     )
     p.add_argument("--dt", type=positive_float, default=0.1, help="physics time step [s]")
     p.add_argument(
@@ -72,6 +82,7 @@ def _cmd_manoeuvre(args: argparse.Namespace) -> int:
         turning = man.turning_circle(
             setup, side * args.rudder_deg, settle=args.settle, progress=progress
         )
+        _report_capsize(f"turning circle δ = {turning.rudder_order_deg:+g}°", turning, setup)
         m = turning.metrics
         print(
             f"turning circle δ = {turning.rudder_order_deg:+g}°: advance "
@@ -87,6 +98,7 @@ def _cmd_manoeuvre(args: argparse.Namespace) -> int:
             continue
         angle = 10.0 if key == "zigzag10" else 20.0
         res = man.zigzag(setup, side * angle, settle=args.settle, progress=progress)
+        _report_capsize(f"{angle:g}°/{angle:g}° zig-zag", res, setup)
         shoots = ", ".join(f"{o:.2f}°" for o in res.metrics.overshoots_deg)
         print(
             f"{angle:g}°/{angle:g}° zig-zag: overshoots {shoots}; initial turning "
@@ -103,6 +115,23 @@ def _cmd_manoeuvre(args: argparse.Namespace) -> int:
     if args.plot:
         _plot([r for r in (turning, z10, z20) if r is not None], args.plot)
     return 0
+
+
+def _report_capsize(
+    trial: str, result: TurningCircleResult | ZigzagResult, setup: ShipSetup
+) -> None:
+    """Say so, first, when a trial capsized the ship (its metrics are of the run until then)."""
+    import math
+
+    from ship_gym.analysis import manoeuvres as man
+
+    if result.capsized:
+        angle = math.degrees(man.capsize_angle(setup))
+        print(
+            f"{trial}: CAPSIZED {result.capsize_time:.0f} s after the first rudder order (heel "
+            f"beyond the angle of vanishing stability, {angle:.1f}°); the trial stopped there "
+            "and the metrics below are of the run until then"
+        )
 
 
 def _plot(results: list, path: str) -> None:

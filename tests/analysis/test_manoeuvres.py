@@ -6,6 +6,7 @@ autopilot on the S175 and a speed trial. Slow tests (``-m slow``): the 35° turn
 """
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -277,3 +278,40 @@ def test_s175_zigzags_meet_imo(service_setup):
     assert 8.0 < z20.first_overshoot_deg < 20.0
     # the rudder follows the orders at the servo rate: the applied angle lags the order
     assert np.abs(z10.rudder_deg).max() == pytest.approx(10.0, abs=1e-6)
+
+
+def test_a_turn_that_capsizes_the_ship_is_reported_as_a_capsize():
+    """The S175 with GM 0.11 m (KG 10.45 m) at 13 m/s heels outward in a 35° turn beyond its
+    angle of vanishing stability (48.5°) after ≈ 40 s: the trial stops there, says so, and
+    its IMO rows are not met (not "nan … NOT MET" as if it had turned). With GM 0.21 m the same
+    turn heels 33° and is not a capsize."""
+    from ship_gym.analysis import manoeuvres as man
+
+    setup = man.trial_setup("s175", 13.0, hull_overrides={"kg": 10.45})
+    res = man.turning_circle(setup, 35.0, max_time=400.0, settle=20.0)
+    assert res.capsized and 20.0 < res.capsize_time < 80.0
+    assert res.max_outward_heel_deg > math.degrees(man.capsize_angle(setup))
+    assert res.t[-1] == pytest.approx(res.capsize_time)
+    rows = man.imo_criteria([res], 175.0, 13.0)
+    assert rows and all(r.capsized and not r.passed for r in rows)
+    assert "NOT MET (capsized)" in man.format_criteria(rows)
+    assert man.report(175.0, 13.0, turning=res)["turning"]["capsized"] is True
+    stiff = man.turning_circle(
+        man.trial_setup("s175", 13.0, hull_overrides={"kg": 10.35}),
+        35.0,
+        max_time=400.0,
+        settle=20.0,
+    )
+    assert not stiff.capsized and 25.0 < stiff.max_outward_heel_deg < 45.0
+
+
+def test_the_default_test_speed_is_the_ship_files_service_speed(tmp_path):
+    from ship_gym.analysis import manoeuvres as man
+    from ship_gym.ship import load_ship
+
+    assert man.trial_setup("s175").speed == pytest.approx(load_ship("s175").service_speed)
+    text = (Path(man.__file__).parents[1] / "data" / "ships" / "s175.toml").read_text()
+    assert "service_froude = 0.25" in text
+    own = tmp_path / "fast.toml"
+    own.write_text(text.replace("service_froude = 0.25", "service_mps = 12.0"))
+    assert man.trial_setup(str(own)).speed == pytest.approx(12.0)
