@@ -296,6 +296,12 @@ class CapsizeMapConfig:
         |φ| that counts as capsize [deg]; None: the vanishing angle of the loading condition.
     record_every : int
         Steps between the samples used for the roll statistics.
+    initial_heel_deg : float
+        Each seed starts heeled by an angle drawn uniform in ±this [deg] (from the seed's
+        generator, after the wave draws, so the seas are those of the same seed without it):
+        an instability (parametric or synchronous roll) then grows from a stated disturbance
+        instead of from round-off, whose growth time depends on the platform and the
+        duration. 0 (default): upright, as before this option existed.
     """
 
     hull: str = "s175"
@@ -311,6 +317,7 @@ class CapsizeMapConfig:
     radiation: Literal["state_space", "convolution", "2a", "2b", "none"] = "state_space"
     capsize_angle_deg: float | None = None
     record_every: int = 5
+    initial_heel_deg: float = 0.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "headings_deg", tuple(float(h) for h in self.headings_deg))
@@ -348,6 +355,13 @@ class CapsizeMapConfig:
             )
         if int(self.record_every) < 1:
             raise ValueError(f"record_every must be >= 1, got {self.record_every!r}")
+        heel = self.initial_heel_deg
+        if not (isinstance(heel, int | float) and math.isfinite(heel) and 0.0 <= heel <= 30.0):
+            raise ValueError(
+                f"initial_heel_deg must be a heel in [0, 30] deg (a disturbance, not a loading), "
+                f"got {heel!r}"
+            )
+        object.__setattr__(self, "initial_heel_deg", float(heel))
 
     def to_dict(self) -> dict:
         """JSON-ready dict (with the results-file format version)."""
@@ -355,6 +369,8 @@ class CapsizeMapConfig:
         for sea in d["seas"]:  # long-crested seas read as before spreading_s existed
             if sea["spreading_s"] is None:
                 del sea["spreading_s"]
+        if d["initial_heel_deg"] == 0.0:  # upright maps read as before the option existed
+            del d["initial_heel_deg"]
         d["format_version"] = FORMAT_VERSION
         return json.loads(json.dumps(d))
 
@@ -941,18 +957,33 @@ def build_cells_simulator(
             f"differ by seed); got (sea, heading, froude) indices {sorted(groups)}"
         )
     fields = []
-    for cell in cells:
+    heels = np.zeros(len(cells))
+    for k, cell in enumerate(cells):
         setup, sea, beta, rng = cell_setup(config, cell)
         fields.append(wave_field_for(sea, beta, rng))
+        heels[k] = initial_heel(config, rng)
     if not steered:
         setup = dataclasses.replace(setup, rudder="none")
-    return build_batch_simulator(
+    sim = build_batch_simulator(
         setup,
         fields,
         sea=sea,
         wave_heading=beta,
         backend=backend,
     )
+    if config.initial_heel_deg > 0.0:
+        eta = np.tile(sim.initial_eta, (len(cells), 1))
+        eta[:, 3] = heels
+        sim.reset(np.arange(len(cells)), eta=eta)
+    return sim
+
+
+def initial_heel(config: CapsizeMapConfig, rng: np.random.Generator) -> float:
+    """A seed's initial heel [rad]: uniform in ±``config.initial_heel_deg`` from its generator
+    (after its wave draws); 0 without drawing when the option is off."""
+    if config.initial_heel_deg == 0.0:
+        return 0.0
+    return math.radians(float(rng.uniform(-config.initial_heel_deg, config.initial_heel_deg)))
 
 
 def run_cells(
@@ -1028,6 +1059,10 @@ def _run_cell_simulator(config: CapsizeMapConfig, cell: Cell, capsize_angle_deg:
     t0 = time.process_time()
     setup, sea, beta, rng = cell_setup(config, cell)
     sim = build_simulator(setup, sea, wave_heading=beta, rng=rng)
+    if config.initial_heel_deg > 0.0:
+        eta = np.asarray(sim.eta, float).copy()
+        eta[3] = initial_heel(config, rng)
+        sim.reset(eta=eta)
     spec = config.seas[cell.sea]
     outcome, _ = simulate_until_capsize(
         sim,

@@ -89,6 +89,13 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         default=None,
         help="|roll| counted as capsize [deg] (default: vanishing angle of the GZ curve)",
     )
+    p.add_argument(
+        "--initial-heel-deg",
+        type=bounded_float(0.0, 30.0),
+        default=0.0,
+        help="each seed starts heeled by a heel drawn in ± this [deg], so that an instability "
+        "grows from a stated disturbance, not from round-off (default 0: upright)",
+    )
     p.add_argument("--n-jobs", type=n_jobs, default=1, help="parallel worker processes")
     p.add_argument(
         "--results", default="out/capsize_map.jsonl", help="JSON-lines results (resumable)"
@@ -198,6 +205,7 @@ def cmd_capsize_map(args: argparse.Namespace) -> int:
         integrator=args.integrator,
         radiation=args.radiation,
         capsize_angle_deg=args.capsize_angle,
+        initial_heel_deg=args.initial_heel_deg,
     )
     n_cells = len(config.cells())
     print(
