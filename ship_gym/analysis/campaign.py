@@ -112,6 +112,7 @@ _SCALAR_KEYS = (
     "controller",
     "batch_seeds",
     "record_every",
+    "initial_heel_deg",
     "database",
     "name",
 )
@@ -179,6 +180,11 @@ class CampaignSpec:
         Seeds per task (one engine call).
     record_every : int
         Steps between the samples of the roll statistics.
+    initial_heel_deg : float
+        Each seed starts heeled by a draw in ± this [deg]
+        (:attr:`ship_gym.analysis.capsize_map.CapsizeMapConfig.initial_heel_deg`: instabilities
+        grow from a stated disturbance, not round-off); 0: upright (autopilot and ``"none"``
+        controllers only).
     database : str
         Hydrodynamic database ("auto": the ship's own).
     name : str
@@ -202,6 +208,7 @@ class CampaignSpec:
     controller: ControllerName = "autopilot"
     batch_seeds: int = 8
     record_every: int = 5
+    initial_heel_deg: float = 0.0
     database: str = "auto"
     name: str = ""
     base_dir: Path = field(default_factory=Path.cwd)
@@ -284,6 +291,17 @@ class CampaignSpec:
         if self.radiation not in _RADIATIONS:
             raise CampaignError(
                 f"radiation = {self.radiation!r}; expected one of {', '.join(_RADIATIONS)}"
+            )
+        heel = self.initial_heel_deg
+        if not (_is_number(heel) and 0.0 <= float(heel) <= 30.0):
+            raise CampaignError(
+                f"initial_heel_deg = {heel!r}; expected a heel in [0, 30] [deg] (a disturbance "
+                "drawn per seed within ± it)"
+            )
+        if float(heel) > 0.0 and str(self.controller).startswith(POLICY_PREFIX):
+            raise CampaignError(
+                f"initial_heel_deg = {heel!r} with controller = {self.controller!r}: a policy "
+                "cell starts from its environment's reset; use 0 or the autopilot/none"
             )
         angle = self.capsize_angle_deg
         if not (angle == "vanishing" or (_is_number(angle) and 0.0 < float(angle) <= 180.0)):
@@ -617,6 +635,8 @@ def cell_identity(
             "controller": spec.controller_identity,
             "record_every": spec.record_every,
             "database": spec.database,
+            # only when set: the ids of upright cells stay those of before the option
+            **({"initial_heel_deg": spec.initial_heel_deg} if spec.initial_heel_deg else {}),
         }
     )
 
@@ -696,6 +716,7 @@ class CampaignTask:
     database: str
     policy_sha256: str = ""
     trust_policy: bool = False
+    initial_heel_deg: float = 0.0
 
 
 def tasks(
@@ -727,6 +748,7 @@ def tasks(
                     database=spec.database,
                     policy_sha256=spec.policy.model_sha256 if spec.policy is not None else "",
                     trust_policy=trust_policy,
+                    initial_heel_deg=spec.initial_heel_deg,
                 )
             )
     return out
@@ -771,6 +793,7 @@ def run_task(task: CampaignTask) -> list[dict]:
             radiation=task.radiation,  # type: ignore[arg-type]
             capsize_angle_deg=angle,
             record_every=task.record_every,
+            initial_heel_deg=task.initial_heel_deg,
         )
         if task.controller.startswith(POLICY_PREFIX):
             outs = _run_policy_task(task, first, loading, froude, angle)

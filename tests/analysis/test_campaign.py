@@ -469,3 +469,31 @@ def test_a_store_of_an_earlier_version_is_adopted_and_a_damaged_shard_is_named(
     assert main(["campaign", "report", str(store)]) == 1
     err = capsys.readouterr().err
     assert shard.name in err and "internal error" not in err
+
+
+def test_an_initial_heel_starts_each_seed_disturbed_and_keeps_upright_ids(tmp_path):
+    """``initial_heel_deg``: in head seas (β = 180°, long-crested) an upright symmetric ship
+    stays upright (|φ| < 1e-6°); heeled by a per-seed draw within ±3° it rolls. Upright
+    campaigns keep their cell ids; the heel is part of the ids when set; bad values and a
+    policy controller are refused by name."""
+    text = TINY.format(headings="[180]", seeds=2).replace("capsize_angle_deg = 1.0", "")
+    upright = tmp_path / "upright.toml"
+    upright.write_text(text)
+    heeled = tmp_path / "heeled.toml"
+    heeled.write_text("initial_heel_deg = 3.0\n" + text)
+    spec_up, spec_heel = cp.read_campaign(upright), cp.read_campaign(heeled)
+    assert spec_heel.initial_heel_deg == 3.0
+    ids_up = {c.cell_id for c in cp.cells(spec_up)}
+    ids_heel = {c.cell_id for c in cp.cells(spec_heel)}
+    assert not ids_up & ids_heel
+    zero = tmp_path / "zero.toml"
+    zero.write_text("initial_heel_deg = 0\n" + text)
+    assert {c.cell_id for c in cp.cells(cp.read_campaign(zero))} == ids_up
+    rolls_up = [r["max_abs_roll_deg"] for r in cp.run_campaign(spec_up, tmp_path / "u").records]
+    res = cp.run_campaign(spec_heel, tmp_path / "h", progress=False)
+    rolls = sorted(r["max_abs_roll_deg"] for r in res.records)
+    assert max(rolls_up) < 1e-6 and min(rolls) > 0.01 and rolls[0] != rolls[1]
+    bad = tmp_path / "bad.toml"
+    bad.write_text("initial_heel_deg = 40\n" + text)
+    with pytest.raises(cp.CampaignError, match="initial_heel_deg = 40"):
+        cp.read_campaign(bad)
