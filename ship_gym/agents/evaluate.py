@@ -386,6 +386,56 @@ def _policy_factory(spec: str, device: str = "cpu", *, trusted: bool = False) ->
     raise ValueError(f"unknown policy {spec!r}: expected one of {sorted(BASELINES)} or model:PATH")
 
 
+def _shared_env_kwargs(
+    env_id: str,
+    labels: Sequence[str],
+    policies: Sequence[Any],
+    env_kwargs: dict[str, Any],
+    use_training_env: bool,
+    report: Any,
+) -> dict[str, Any]:
+    """The one set of env keyword arguments every policy of an evaluation runs with.
+
+    Saved models carry the settings they were trained with (``training_env``); with
+    ``use_training_env`` those settings, updated by ``env_kwargs``, apply to *every* policy,
+    baselines included, so that no table compares policies on different ships or seas (a model
+    trained on another ship beside baselines on the default one). Models trained with different
+    settings cannot share a table: ValueError naming them.
+    """
+    trained: dict[str, dict[str, Any]] = {}
+    for label, policy in zip(labels, policies, strict=True):
+        training_env = getattr(policy, "training_env", None) or {}
+        trained_id = training_env.get("id")
+        if trained_id and trained_id != env_id and report is not None:
+            report(f"warning: {label} was trained on {trained_id}, evaluated on {env_id}")
+        if training_env:
+            trained[label] = dict(training_env.get("kwargs") or {})
+    if not use_training_env:
+        for label, settings in trained.items():
+            if settings and report is not None:
+                report(f"{label}: ignoring the env settings it was trained with {settings}")
+        return env_kwargs
+    distinct = {json.dumps(v, sort_keys=True, default=str) for v in trained.values()}
+    if len(distinct) > 1:
+        listing = "; ".join(f"{k}: {v}" for k, v in trained.items())
+        raise ValueError(
+            "the models were trained with different env settings and cannot share one table "
+            f"({listing}); evaluate them separately, or pass the settings to compare on with "
+            "--set and --no-training-env"
+        )
+    settings = next(iter(trained.values()), {})
+    if not settings:
+        return env_kwargs
+    merged = {**settings, **env_kwargs}
+    if report is not None:
+        overridden = sorted(set(settings) & set(env_kwargs))
+        report(
+            f"every policy runs with the env settings the model(s) were trained with {settings}"
+            + (f" (overridden by --set: {overridden})" if overridden else "")
+        )
+    return merged
+
+
 def evaluate_policies(
     env_id: str,
     policies: Sequence[str],
@@ -402,10 +452,12 @@ def evaluate_policies(
 ) -> dict[str, Any]:
     """Evaluate each policy on episodes seeded ``seed … seed + episodes − 1``.
 
-    A saved model runs, by default (``use_training_env``), with the env keyword arguments it
-    was trained with (``[env] kwargs`` of its run's ``config.toml``), updated by ``env_kwargs``;
-    ``report(message)`` (e.g. ``print``) is told which settings were applied. Each policy gets
-    a unique label (:func:`policy_labels`).
+    Every policy runs with the same env keyword arguments (:func:`_shared_env_kwargs`): by
+    default (``use_training_env``) those a saved model was trained with (``[env] kwargs`` of its
+    run's ``config.toml``), updated by ``env_kwargs`` — baselines included, so that a model
+    trained on another ship is compared on that ship; models trained with different settings
+    are refused. ``report(message)`` (e.g. ``print``) is told which settings were applied. Each
+    policy gets a unique label (:func:`policy_labels`).
 
     A saved model is loaded only when trained by this installation, shipped with the package,
     or ``trusted`` (the caller's opt-in: loading an SB3 model runs code from the file;
@@ -435,24 +487,10 @@ def evaluate_policies(
     }
     labels = policy_labels(policies)
     factories = [_policy_factory(spec, device=device, trusted=trusted)[1] for spec in policies]
+    kwargs = _shared_env_kwargs(
+        env_id, labels, factories, dict(env_kwargs or {}), use_training_env, report
+    )
     for label, policy in zip(labels, factories, strict=True):
-        kwargs = dict(env_kwargs or {})
-        training_env = getattr(policy, "training_env", None) or {}
-        if training_env:
-            trained_id = training_env.get("id")
-            trained_kwargs = dict(training_env.get("kwargs") or {})
-            if trained_id and trained_id != env_id and report is not None:
-                report(f"warning: {label} was trained on {trained_id}, evaluated on {env_id}")
-            if use_training_env and trained_kwargs:
-                kwargs = {**trained_kwargs, **kwargs}
-                if report is not None:
-                    overridden = sorted(set(trained_kwargs) & set(env_kwargs or {}))
-                    report(
-                        f"{label}: using the env settings it was trained with {trained_kwargs}"
-                        + (f" (overridden by --set: {overridden})" if overridden else "")
-                    )
-            elif trained_kwargs and report is not None:
-                report(f"{label}: ignoring the env settings it was trained with {trained_kwargs}")
         out["policy_env_kwargs"][label] = kwargs
         t0 = time.perf_counter()
         stats = run_episodes(

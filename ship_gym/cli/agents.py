@@ -252,8 +252,10 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
     )
     out = write_results(results, args.out, plot=not args.no_plot)
     width = max(len(k) for k in results["policies"]) + 2
+    settings = next(iter(results["policy_env_kwargs"].values()), {})
     print(
         f"{args.env}: {args.episodes} episodes, seeds {args.seed}…{args.seed + args.episodes - 1}"
+        f"; every row with {settings or 'the env defaults'}"
     )
     column = max(len(k) for k in METRICS) + 2
     print("policy".ljust(width) + "".join(k.rjust(column) for k in METRICS))

@@ -551,6 +551,7 @@ def test_evaluate_applies_the_training_env_settings_and_says_so(monkeypatch):
     )
     assert list(out["policies"]) == ["model:r1", "model:r2"]
     assert seen["model:r1"] == {"forcing_amplitude": 0.03, "max_moment": 0.02}
+    assert seen["model:r2"] == seen["model:r1"]
     assert any("trained with" in m and "forcing_amplitude" in m for m in messages)
     seen.clear()
     messages.clear()
@@ -570,6 +571,47 @@ def test_evaluate_applies_the_training_env_settings_and_says_so(monkeypatch):
         "ship_gym/RollOneDOF-v0", specs[:1], 1, 0, {}, use_training_env=False, report=print
     )
     assert seen["model:r1"] == {}
+
+
+def test_evaluate_runs_baselines_on_the_models_ship_and_refuses_mixed_models(monkeypatch):
+    """Issue #32: a model trained on another ship (or sea) and the baselines of the same table
+    run on the same settings — the model's — and models trained with different settings are
+    refused rather than put in one table."""
+    import ship_gym.agents.evaluate as ev
+
+    class Fake:
+        def __init__(self, ship: str) -> None:
+            self.training_env = {"id": "ship_gym/RollStabilization-v3", "kwargs": {"ship": ship}}
+
+    models = {"model:a/model.zip": Fake("kcs.toml"), "model:b/model.zip": Fake("other.toml")}
+
+    def factory(spec, device="cpu", trusted=False):
+        if spec in models:
+            return spec, models[spec]
+        return spec, (lambda env: None)
+
+    seen = {}
+    monkeypatch.setattr(ev, "_policy_factory", factory)
+
+    def fake_run(env_id, policy, seeds, kwargs, **k):
+        seen[k["label"]] = dict(kwargs)
+        return ev.EpisodeStats(**{f: [] for f in ev.EpisodeStats.__dataclass_fields__})
+
+    monkeypatch.setattr(ev, "run_episodes", fake_run)
+    monkeypatch.setattr(ev, "summarize", lambda stats: {})
+    monkeypatch.setattr(ev, "asdict", lambda stats: {})
+    messages: list[str] = []
+    out = ev.evaluate_policies(
+        "ship_gym/RollStabilization-v3", ["zero", "fins", "model:a/model.zip"], 1, 0, {},
+        report=messages.append,
+    )  # fmt: skip
+    assert seen == {label: {"ship": "kcs.toml"} for label in ("zero", "fins", "model:a")}
+    assert all(v == {"ship": "kcs.toml"} for v in out["policy_env_kwargs"].values())
+    assert any("every policy runs with" in m and "kcs.toml" in m for m in messages)
+    with pytest.raises(ValueError, match="different env settings"):
+        ev.evaluate_policies(
+            "ship_gym/RollStabilization-v3", ["model:a/model.zip", "model:b/model.zip"], 1, 0
+        )
 
 
 # ----------------------------------------------------------------------------- leftovers (item 10)
