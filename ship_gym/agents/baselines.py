@@ -753,7 +753,7 @@ class PolarGuidanceMaster(IMOGuidanceMaster):
     parametric_sector_deg: float = 45.0
     parametric_height_ratio: float = 0.03
     resonance_band: float = 0.2
-    zone_margin: float = 0.1
+    zone_margin: float = 0.0
     beam_limit_deg: float = 90.0
     zone_weights: tuple[float, float, float, float, float] = (3.0, 0.5, 0.0, 1.0, 0.0)
     deviation_step_deg: float = 15.0

@@ -129,9 +129,15 @@ def report_hull(
     print("  heel [deg]   GZ [m]")
     for h, gz in zip(curve.heel_deg, curve.gz, strict=True):
         print(f"  {h:9.1f}  {gz:8.4f}")
+    vanishing = curve.vanishing_angle_deg
+    top = float(np.max(curve.heel_deg))
     print(
         f"  max GZ {curve.max_gz:.4f} m at {curve.angle_max_gz_deg:.1f} deg; angle of vanishing "
-        f"stability {curve.vanishing_angle_deg:.2f} deg"
+        + (
+            f"stability {vanishing:.2f} deg"
+            if np.isfinite(vanishing)
+            else f"stability not reached up to {top:g} deg (GZ > 0 there, within rounding)"
+        )
     )
     if plot:
         import matplotlib

@@ -101,16 +101,30 @@ def _report_speed(ship: Any) -> dict[str, Any]:
     hull = ship.hull
     u = ship.service_speed
     fn = u / math.sqrt(hull.g * hull.particulars.lpp)
-    prop = ship.propeller()
-    resistance = prop.resistance
-    r_t = float(resistance.resistance(u)) if resistance is not None else float("nan")
-    design = getattr(prop, "design", None)
-    n = float(prop.shaft_speed_for(u))
     lo, hi = ship.speed_range
     print(
         f"  service speed {u:.3f} m/s ({u / 0.514444:.1f} kn, Fn {fn:.3f}); range {lo:g} … "
         f"{hi:g} m/s"
     )
+    try:
+        prop = ship.propeller()
+    except ValueError as err:  # a form outside the regressions (a box barge: C_B = 1)
+        print(
+            f"  calm-water resistance and propeller: not estimated — {err} (Holtrop–Mennen and "
+            "the B-series design are regressions for ship forms); what needs propulsion "
+            "(manoeuvre, the ship environments) is not available for this form"
+        )
+        return {
+            "service_speed_mps": u,
+            "froude_number": fn,
+            "resistance_N": None,
+            "propeller": None,
+            "not_estimated": str(err),
+        }
+    resistance = prop.resistance
+    r_t = float(resistance.resistance(u)) if resistance is not None else float("nan")
+    design = getattr(prop, "design", None)
+    n = float(prop.shaft_speed_for(u))
     print(
         f"  calm-water resistance (Holtrop–Mennen) R_T {r_t / 1e3:.1f} kN, effective power "
         f"{r_t * u / 1e6:.2f} MW"

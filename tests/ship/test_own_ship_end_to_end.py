@@ -127,3 +127,20 @@ def test_concurrent_builds_of_one_database_build_it_once(
         w.join()
     assert len(calls) == 1
     assert len(paths) == 2 and paths[0] == paths[1] and paths[0].is_file()
+
+
+def test_ship_check_reports_a_form_outside_the_resistance_regressions(tmp_path, capsys):
+    """The bundled box barge (C_B = 1) is outside Holtrop–Mennen's and the B-series design's
+    regressions: ``ship check`` says so and still reports everything else (issue #35 item 0),
+    and a GZ curve that does not vanish within the heels computed is said in words, not nan."""
+    out = tmp_path / "barge.json"
+    assert main(["ship", "check", "box_barge", "--plot", "", "--json", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "not estimated" in text and "block coefficient" in text
+    assert "nan deg" not in text
+    report = json.loads(out.read_text())
+    assert (
+        report["speed"]["propeller"] is None
+        and "block coefficient" in (report["speed"]["not_estimated"])
+    )
+    assert report["appendages"]["rudder"] is not None and report["manoeuvring"]
