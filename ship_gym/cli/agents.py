@@ -16,6 +16,7 @@ import argparse
 import json
 import math
 from pathlib import Path
+from typing import Any
 
 from ship_gym.agents.configs import shipped_config_names
 from ship_gym.cli.common import (
@@ -252,7 +253,7 @@ def _cmd_evaluate(args: argparse.Namespace) -> int:
     )
     out = write_results(results, args.out, plot=not args.no_plot)
     width = max(len(k) for k in results["policies"]) + 2
-    settings = next(iter(results["policy_env_kwargs"].values()), {})
+    settings: dict[str, Any] = next(iter(results["policy_env_kwargs"].values()), {})
     print(
         f"{args.env}: {args.episodes} episodes, seeds {args.seed}…{args.seed + args.episodes - 1}"
         f"; every row with {settings or 'the env defaults'}"
