@@ -13,7 +13,8 @@ among those whose capsize rate is lowest-bounded (Wilson upper bound no higher t
 master's); the learned master's gain over it is the paired-bootstrap 95 % interval of the ratio
 of mean progress − 1, its capsize rate judged on its Wilson interval.
 
-    python scripts/heavy_weather_benchmark.py --model docs/benchmarks/policies/HeavyWeather/ppo_heavy_weather
+    python scripts/heavy_weather_benchmark.py \
+        --model docs/benchmarks/policies/HeavyWeather/ppo_heavy_weather
 """
 
 from __future__ import annotations
@@ -27,21 +28,21 @@ from typing import Any
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
-import matplotlib  # noqa: E402
+import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from ship_gym.agents.evaluate import evaluate_policies  # noqa: E402
-from ship_gym.agents.protocol import (  # noqa: E402
+from ship_gym.agents.evaluate import evaluate_policies
+from ship_gym.agents.protocol import (
     HELD_OUT_EPISODES,
     HELD_OUT_FIRST,
     check_held_out,
     mean_ratio,
     paired_bootstrap,
 )
-from ship_gym.analysis.capsize_statistics import wilson_interval  # noqa: E402
+from ship_gym.analysis.capsize_statistics import wilson_interval
 
 ROOT = Path(__file__).resolve().parents[1]
 ENV_ID = "ship_gym/HeavyWeather-v0"
@@ -142,19 +143,37 @@ def figure(summary: dict[str, Any], path: Path) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--model", type=Path, default=None, help="a trained policy folder")
+    parser.add_argument(
+        "--policies",
+        default=",".join(MASTERS),
+        help="masters to run now (the others' episodes are kept from an earlier run of the "
+        "same seeds in the output JSON)",
+    )
     parser.add_argument("--episodes", type=int, default=HELD_OUT_EPISODES)
     parser.add_argument("--seed", type=int, default=HELD_OUT_FIRST)
     parser.add_argument("--out", type=Path, default=ROOT / "docs" / "benchmarks")
     args = parser.parse_args()
     seeds = list(range(args.seed, args.seed + args.episodes))
     check_held_out(seeds)
-    policies = list(MASTERS) + ([f"model:{args.model}"] if args.model else [])
+    policies = [p for p in args.policies.split(",") if p] + (
+        [f"model:{args.model}"] if args.model else []
+    )
+    path = args.out / "heavy_weather.json"
     results = evaluate_policies(ENV_ID, policies, args.episodes, args.seed, report=print)
+    if path.exists():  # keep the other policies' episodes of the same seeds
+        earlier = json.loads(path.read_text())
+        if earlier.get("seeds") == [seeds[0], seeds[-1]]:
+            kept = {
+                k: v for k, v in earlier["results"]["policies"].items()
+                if k not in results["policies"]
+            }  # fmt: skip
+            results["policies"] = {**kept, **results["policies"]}
+    order = [*MASTERS, *sorted(k for k in results["policies"] if k not in MASTERS)]
+    results["policies"] = {k: results["policies"][k] for k in order if k in results["policies"]}
     summary = table(results)
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / "heavy_weather.json").write_text(
-        json.dumps({"seeds": [seeds[0], seeds[-1]], **summary, "results": results}, indent=1)
-        + "\n"
+        json.dumps({"seeds": [seeds[0], seeds[-1]], **summary, "results": results}, indent=1) + "\n"
     )
     (args.out / "heavy_weather.md").write_text(markdown(summary, seeds))
     figure(summary, args.out / "heavy_weather.png")

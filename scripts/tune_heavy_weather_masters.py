@@ -48,7 +48,7 @@ GRIDS: dict[str, dict[str, tuple[list[float], float, float]]] = {
     },
     # the IMO zones' margin is the IMO master's tuned one (0: the guidance's own zones)
     "polar": {
-        "risk_limit": ([0.01, 0.05, 0.2], 0.0, 1.0),
+        "risk_limit": ([0.003, 0.01, 0.03], 0.001, 1.0),
         "damping_ratio": ([0.03, 0.06, 0.12], 0.0, 1.0),
     },
 }
@@ -72,7 +72,9 @@ def widened(grid: list[float], best: float, low: float, high: float) -> list[flo
     return None
 
 
-def tune(master: str, seeds: list[int], rows: list[dict[str, Any]]) -> dict[str, Any]:
+def tune(
+    master: str, seeds: list[int], rows: list[dict[str, Any]], passes: int = 4
+) -> dict[str, Any]:
     """Coordinate search of one master (module docstring)."""
     grids = {k: list(v[0]) for k, v in GRIDS[master].items()}
     params = {k: g[len(g) // 2] for k, g in grids.items()}
@@ -87,7 +89,7 @@ def tune(master: str, seeds: list[int], rows: list[dict[str, Any]]) -> dict[str,
             print(f"  {master} {p}: {cache[key]} ({time.perf_counter() - t0:.0f} s)", flush=True)
         return cache[key]
 
-    for _ in range(4):  # passes
+    for _ in range(passes):
         changed = False
         for name in grids:
             while True:
@@ -117,6 +119,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--episodes", type=int, default=60)
     parser.add_argument("--masters", default="imo-guidance,polar")
+    parser.add_argument("--passes", type=int, default=4, help="coordinate-search passes at most")
     parser.add_argument("--out", type=Path, default=ROOT / "docs" / "benchmarks")
     args = parser.parse_args()
     seeds = list(range(FIRST_SEED, FIRST_SEED + args.episodes))
@@ -130,7 +133,7 @@ def main() -> None:
     out.update({"env_id": ENV_ID, "seeds": [seeds[0], seeds[-1]], "criterion": "mean return"})
     for master in args.masters.split(","):
         rows: list[dict[str, Any]] = []
-        out[master] = tune(master, seeds, rows)
+        out[master] = tune(master, seeds, rows, args.passes)
         print(f"{master}: {out[master]}", flush=True)
         args.out.mkdir(parents=True, exist_ok=True)
         path.write_text(json.dumps(out, indent=2) + "\n")  # after each master
