@@ -9,6 +9,7 @@ import re
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, TypeVar
 
+from ship_gym.envs.observations import SHIP_OBSERVATIONS, markdown_table
 from ship_gym.envs.registration import max_episode_steps
 
 if TYPE_CHECKING:
@@ -18,21 +19,9 @@ if TYPE_CHECKING:
 # =============================================================================================
 # the environments' docstrings: shared pieces, written once
 # =============================================================================================
-SHIP_OBSERVATION_TABLE = """\
-| # | name | unit | bound |
-|---|---|---|---|
-| 0 | roll φ | rad | ±π |
-| 1 | pitch θ | rad | ±π/2 |
-| 2 | heave (from the calm-water equilibrium, down positive) | m | ±30 |
-| 3–5 | roll rate p, pitch rate q, heave velocity w (body) | rad/s, rad/s, m/s | 5, 5, 30 |
-| 6 | yaw rate r | rad/s | ±2 |
-| 7–8 | surge speed u, sway velocity v | m/s | ±30 |
-| 9 | heading error wrap(ψ_ref − ψ) | rad | ±π |
-| 10–11 | cos β, sin β of the mean relative wave heading β = χ − ψ | - | ±1 |
-| 12 | rudder angle (servo) | rad | ±π/2 |
-| 13 | shaft speed | rev/s | ±20 |"""
-"""Markdown rows of the common observation entries 0–13 of every S175 task (the names and
-bounds of ``_BASE_OBSERVATIONS``, the rudder angle and the shaft speed)."""
+SHIP_OBSERVATION_TABLE = markdown_table(SHIP_OBSERVATIONS)
+"""Markdown rows of the common observation entries 0–13 of every ship task, generated from the
+observation table (:data:`~ship_gym.envs.observations.SHIP_OBSERVATIONS`)."""
 
 SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
     # name: (unit, meaning); an environment may give its own meaning for any of them
