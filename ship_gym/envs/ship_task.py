@@ -73,6 +73,13 @@ from numpy.typing import NDArray
 from ship_gym.conventions import wrap_angle
 from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import BatchedTask, TaskStep
+from ship_gym.envs.config import (
+    DANGEROUS_ROLL_LIMITS,
+    GM_LIMITS,
+    SENSOR_NOISE_LIMITS,
+    SPEED_LIMITS,
+)
+from ship_gym.envs.episodes import EpisodeSampler
 from ship_gym.envs.loading import loading_condition
 from ship_gym.envs.observations import (
     SENSOR_NOISE_STD as _SENSOR_NOISE_STD,
@@ -108,11 +115,7 @@ MAX_SUBSTEPS = 1000
 commands are held over a control step, and a longer one is no longer closed-loop control (and
 one ``step()`` would run for minutes)."""
 
-SPEED_LIMITS = (0.1, 30.0)
-"""Accepted initial speeds [m/s] (``speed_range_mps``, ``reset(options={"initial_speed_mps"})``)."""
-
-GM_LIMITS = (0.05, 10.0)
-"""Accepted GM of an episode's loading [m] (``gm_range_m``, ``reset(options={"gm_m"})``)."""
+# SPEED_LIMITS, GM_LIMITS: the accepted initial speeds [m/s] and GM [m], from ShipConfig
 
 
 # the observation table (ship_gym.envs.observations): names, units, bounds, noise, getters
@@ -372,44 +375,34 @@ class ShipTask(BatchedTask, abc.ABC):
         # --- options
         lc = loading_condition(setup)
         self.loading = lc
-        if speed_range is not None:
-            speed_range = check_range(
-                "speed_range_mps",
-                speed_range,
-                low=SPEED_LIMITS[0],
-                high=SPEED_LIMITS[1],
-                unit="m/s",
-            )
-            if not setup.propulsion:
-                raise ValueError("speed_range_mps needs a setup with propulsion (a shaft speed)")
-        self.speed_range = speed_range
-        if gm_range is not None:
-            gm_range = check_range(
-                "gm_range_m", gm_range, low=GM_LIMITS[0], high=GM_LIMITS[1], unit="m"
-            )
-        self.gm_range = gm_range
-        if capsize_angle_deg is not None:
-            capsize_angle_deg = check_real(
-                "capsize_angle_deg",
-                capsize_angle_deg,
-                low=0.0,
-                high=180.0,
-                unit="deg",
-                low_open=True,
-                why=" or None",
-            )
-        self.capsize_angle_deg = capsize_angle_deg
+        if speed_range is not None and not setup.propulsion:
+            low, high = SPEED_LIMITS
+            check_range("speed_range_mps", speed_range, low=low, high=high, unit="m/s")
+            raise ValueError("speed_range_mps needs a setup with propulsion (a shaft speed)")
+        self.episodes = EpisodeSampler(
+            sea,
+            lc,
+            float(setup.speed),
+            speed_range=speed_range,
+            gm_range=gm_range,
+            capsize_angle_deg=capsize_angle_deg,
+        )
+        """The episode sampler: sea, speed, loading (GM) and capsize angle of each episode."""
+        self.speed_range = self.episodes.speed_range
+        self.gm_range = self.episodes.gm_range
+        self.capsize_angle_deg = self.episodes.capsize_angle_deg
         dangerous_roll_deg = check_real(
             "dangerous_roll_deg",
             dangerous_roll_deg,
-            low=0.0,
-            high=90.0,
+            low=DANGEROUS_ROLL_LIMITS[0],
+            high=DANGEROUS_ROLL_LIMITS[1],
             unit="deg",
             low_open=True,
             high_open=True,
         )
         self.dangerous_roll = math.radians(dangerous_roll_deg)
-        self.sensor_noise = check_real("sensor_noise", sensor_noise, low=0.0, high=100.0, unit="-")
+        low, high = SENSOR_NOISE_LIMITS
+        self.sensor_noise = check_real("sensor_noise", sensor_noise, low=low, high=high, unit="-")
         try:
             if isinstance(wave_preview_m, str | bytes):
                 raise TypeError
@@ -484,7 +477,7 @@ class ShipTask(BatchedTask, abc.ABC):
         # --- per-episode state
         self.heading_setpoint = np.zeros(n)  # ψ_ref [rad]
         self.wave_direction = np.zeros(n)  # mean χ of the episode's sea [rad]
-        self.capsize_angle = np.full(n, math.radians(capsize_angle_deg or lc.vanishing_angle_deg))
+        self.capsize_angle = np.full(n, self.episodes.nominal_capsize_angle)
         self.initial_speed = np.full(n, float(setup.speed))
         self.initial_roll = np.zeros(n)
         """Roll angle [rad] and rate [rad/s] each ship started its episode with."""
@@ -607,31 +600,9 @@ class ShipTask(BatchedTask, abc.ABC):
         if ids.size == 0:
             return
         opts = self._check_reset_options(options)
-        sea_opts = self.sea.check_options(opts)
-        lc = self.loading
-        fields = []
-        infos = []
-        speeds = np.empty(ids.size)
-        gms = np.empty(ids.size)
-        for k, rng in enumerate(rngs):
-            wave_field, info = self.sea.sample(rng, sea_opts)
-            fields.append(wave_field)
-            infos.append(info)
-            # the draws always happen, so an option does not shift the random stream
-            speeds[k] = (
-                float(rng.uniform(*self.speed_range)) if self.speed_range else self.setup.speed
-            )
-            gms[k] = float(rng.uniform(*self.gm_range)) if self.gm_range else lc.gm
-        if "initial_speed_mps" in opts:
-            speeds[:] = opts["initial_speed_mps"]
-        if "gm_m" in opts:
-            gms[:] = opts["gm_m"]
-        # loading: G raised by ΔKG = GM_nominal − GM
-        delta_kg = lc.gm - gms
-        if self.capsize_angle_deg is None:
-            capsize_angles = lc.vanishing_angles(delta_kg)
-        else:
-            capsize_angles = np.full(ids.size, math.radians(self.capsize_angle_deg))
+        drawn = self.episodes.draw(rngs, opts)
+        fields, infos, speeds = drawn.wave_fields, drawn.infos, drawn.speed
+        gms, delta_kg, capsize_angles = drawn.gm, drawn.delta_kg, drawn.capsize_angle
         if "roll_deg" in opts and np.any(abs(math.radians(opts["roll_deg"])) >= capsize_angles):
             raise ValueError(
                 f"options['roll_deg'] = {opts['roll_deg']!r} deg must be inside the capsize angle "
