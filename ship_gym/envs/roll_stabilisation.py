@@ -16,8 +16,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ship_gym.comfort.metrics import ComfortSample, PassengerComfort
+from ship_gym.comfort.metrics import ComfortSample
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
+from ship_gym.envs.comfort import ComfortTracker
 from ship_gym.envs.docstrings import (
     FORWARD_SPEED_V3,
     VERSION_HISTORY,
@@ -96,18 +97,20 @@ class ComfortShipTask(ShipEnvTask):
             except ValueError:
                 raise ValueError(f"the setup has no servo-driven {model_name!r}") from None
             self.commands[key] = np.zeros(n)
-        self.comfort = PassengerComfort(
-            n,
-            self.control_dt,
-            passenger_point,
-            rms_time_constant=tau,
-            g=float(self.sim.hull.g),
+        self.comfort_tracker = ComfortTracker(
+            n, self.control_dt, passenger_point, tau, g=float(self.sim.hull.g)
         )
-        self.sample = self._zero_sample()
+        """The comfort component (:class:`ship_gym.envs.comfort.ComfortTracker`)."""
+        self.comfort = self.comfort_tracker.meter
 
-    def _zero_sample(self) -> ComfortSample:
-        z = np.zeros(self.num_envs)
-        return ComfortSample(z, z, z, z, z, z)
+    @property
+    def sample(self) -> ComfortSample:
+        """The last control step's comfort sample (:attr:`ComfortTracker.sample`)."""
+        return self.comfort_tracker.sample
+
+    @sample.setter
+    def sample(self, value: ComfortSample) -> None:
+        self.comfort_tracker.sample = value
 
     def actuator_angles(self) -> NDArray:
         """(N, n_actuators) servo angles of the commanded surfaces [rad]."""
@@ -122,15 +125,12 @@ class ComfortShipTask(ShipEnvTask):
             self.commands[key][i] = 0.0
         nu = np.zeros(6)
         nu[0] = self.initial_speed[i]  # ShipTask resets ν = (U_i, 0, …)
-        self.comfort.reset([i], nu)
-        z = self.sample
-        for arr in (z.lateral, z.vertical, z.weighted_vertical, z.lateral_rms, z.vertical_rms):
-            arr[i] = 0.0
+        self.comfort_tracker.reset([i], nu)
         return {}
 
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
-        self.sample = self.comfort.update(self.sim.eta, self.sim.nu)
-        return self._comfort_reward_terms(stats, self.sample)
+        sample = self.comfort_tracker.update(self.sim.eta, self.sim.nu)
+        return self._comfort_reward_terms(stats, sample)
 
     def _comfort_reward_terms(
         self, stats: StepStatistics, sample: ComfortSample
@@ -138,15 +138,7 @@ class ComfortShipTask(ShipEnvTask):
         raise NotImplementedError
 
     def _comfort_info(self) -> dict[str, NDArray]:
-        s = self.sample
-        return {
-            "lateral_acceleration_mps2": s.lateral.copy(),
-            "vertical_acceleration_mps2": s.vertical.copy(),
-            "lateral_acceleration_rms_mps2": s.lateral_rms.copy(),
-            "vertical_acceleration_rms_mps2": s.vertical_rms.copy(),
-            "msdv_z": s.msdv.copy(),
-            "msi_percent": s.msdv / 3.0,
-        }
+        return self.comfort_tracker.info()
 
     def _action_labels(self, i: int) -> dict[str, float]:
         out = super()._action_labels(i)
