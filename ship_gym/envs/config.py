@@ -65,7 +65,7 @@ def argument(
 
 
 S175_MESH_DEFAULT: tuple[int, int, int, int] = (60, 12, 6, 4)
-# ship_gym.envs.env_task.S175_MESH (imported there from here would make a cycle of docs only)
+"""The S175's default mesh (:data:`ship_gym.envs.env_task.S175_MESH` is this)."""
 
 
 @dataclass(frozen=True)

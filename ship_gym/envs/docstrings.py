@@ -9,6 +9,7 @@ import re
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, TypeVar
 
+from ship_gym.envs.config import SHIP_FIELDS, documented_rows
 from ship_gym.envs.observations import SHIP_OBSERVATIONS, markdown_table
 from ship_gym.envs.registration import max_episode_steps
 
@@ -23,45 +24,25 @@ SHIP_OBSERVATION_TABLE = markdown_table(SHIP_OBSERVATIONS)
 """Markdown rows of the common observation entries 0–13 of every ship task, generated from the
 observation table (:data:`~ship_gym.envs.observations.SHIP_OBSERVATIONS`)."""
 
-SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
-    # name: (unit, meaning); an environment may give its own meaning for any of them
-    "ship": ("-", "bundled ship name or ship file (.toml; ship-gym ship check FILE)"),
-    "froude_number": ("-", "reference speed U = Fn √(g L) (radiation, diffraction, propeller)"),
-    "speed_range_mps": ("m/s", "initial speed range (self-propulsion rpm); keep near U"),
-    "hs_range_m": ("m", "significant wave height range"),
-    "tp_range_s": ("s", "peak period range"),
-    "wave_heading_range_deg": ("deg", "relative wave heading β (0 following, 180 head seas)"),
-    "n_wave_components": ("-", "components of the irregular sea"),
-    "wave_spreading_s": ("-", "cos-2s spreading exponent (None: long-crested)"),
-    "wave_ramp_time_s": ("s", "start-up ramp of the waves (Matusiak 2003, eq. 12)"),
-    "gm_range_m": ("m", "GM range of the loading (per episode; None: nominal)"),
-    "kg_m": ("m", "KG of the nominal loading (None: the ship's; S175 9.55 m)"),
-    "passenger_point_m": ("m", "body-frame passenger position (z down; None: scaled S175 point)"),
-    "physics_dt_s": ("s", "physics time step"),
-    "control_dt_s": ("s", "control step (integer multiple of physics_dt_s)"),
-    "integrator": ("-", '"holloway" (1 force evaluation/step) or "rk4" (4)'),
-    "hull_mesh": ("-", "offsets-hull mesh (sections, panels below/above water, deck)"),
-    "precision": ("-", '"float32" or "float64" wave sums of the Froude–Krylov kernel'),
-    "forward_speed_model": (
-        "-",
-        '"relative_motion" (speed terms on the motion relative to the waves) or '
-        '"radiation_only" (the -v2 model)',
-    ),
-    "num_threads": ("-", "numba threads over the batch's ships (1: serial)"),
-    "capsize_angle_deg": ("deg", "capsize roll angle (None: vanishing angle of the loading)"),
-    "dangerous_roll_deg": ("deg", "roll angle of the Safe-RL cost"),
-    "heading_weight": ("-", "weight of the heading term"),
-    "heading_scale_deg": ("deg", "heading error scale"),
-    "roll_weight": ("-", "weight of the roll term"),
-    "roll_scale_deg": ("deg", "roll scale"),
-    "effort_weight": ("-", "weight of the actuator effort term"),
-    "capsize_penalty": ("-", "penalty paid at capsize"),
-    "comfort_time_constant_s": ("s", "time constant of the running acceleration RMS"),
-    "sensor_noise": ("-", "multiplier of the sensor accuracies (SENSOR_NOISE_STD)"),
-    "wave_preview_m": ("m", "elevation preview: distances ahead of O, or (x, y) body-frame points"),
-}
+SHIP_ARGUMENTS: dict[str, tuple[str, str]] = documented_rows(
+    {
+        # the rows of the keyword arguments several environments share beyond ShipConfig's
+        "passenger_point_m": (
+            "m",
+            "body-frame passenger position (z down; None: scaled S175 point)",
+        ),
+        "heading_weight": ("-", "weight of the heading term"),
+        "heading_scale_deg": ("deg", "heading error scale"),
+        "roll_weight": ("-", "weight of the roll term"),
+        "roll_scale_deg": ("deg", "roll scale"),
+        "effort_weight": ("-", "weight of the actuator effort term"),
+        "comfort_time_constant_s": ("s", "time constant of the running acceleration RMS"),
+    }
+)
 """Unit and meaning of the keyword arguments shared by the ship environments (the rows of the
-``## Arguments`` tables; :func:`env_docstring` takes each default from the task's signature)."""
+``## Arguments`` tables; :func:`env_docstring` takes each default from the task's signature):
+the fields of :class:`~ship_gym.envs.config.ShipConfig` (their single source), then the reward
+and comfort arguments several environments share."""
 
 
 RESET_OPTION_ROWS: dict[str, tuple[str, str]] = {
@@ -119,9 +100,25 @@ def _format_default(value: Any) -> str:
 
 
 def _task_parameters(task_class: type[BatchedTask]) -> list[inspect.Parameter]:
-    """The keyword arguments of ``task_class.__init__`` after ``num_envs``."""
+    """The keyword arguments of ``task_class.__init__`` after ``num_envs``; a ``**config``
+    (a task written the small way, :class:`~ship_gym.envs.env_task.ConfigShipTask`) stands for
+    the :class:`~ship_gym.envs.config.ShipConfig` fields, with the task's ``defaults``."""
     params = list(inspect.signature(task_class.__init__).parameters.values())
-    return [p for p in params[1:] if p.name != "num_envs"]
+    out = []
+    for p in params[1:]:
+        if p.name == "num_envs":
+            continue
+        if p.kind is inspect.Parameter.VAR_KEYWORD:
+            defaults = getattr(task_class, "defaults", None)
+            named = {q.name for q in params}
+            for name in SHIP_FIELDS:
+                if name not in named and defaults is not None:
+                    kind = inspect.Parameter.KEYWORD_ONLY
+                    default = getattr(defaults, name)
+                    out.append(inspect.Parameter(name, kind, default=default))
+            continue
+        out.append(p)
+    return out
 
 
 def arguments_table(task_class: type[BatchedTask], rows: Mapping[str, tuple[str, str]]) -> str:
