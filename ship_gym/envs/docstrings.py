@@ -64,6 +64,22 @@ RESET_OPTION_ROWS: dict[str, tuple[str, str]] = {
 """Unit and meaning of the ``reset(options=...)`` keys of the ship environments."""
 
 
+def observation_table(task_class: type[BatchedTask]) -> str:
+    """The observation table of a ship task's environment docstring: the common entries
+    (:data:`SHIP_OBSERVATION_TABLE`), the task's own (its ``task_observations``) and the
+    wave preview, all from the observation table (:mod:`ship_gym.envs.observations`)."""
+    own = tuple(getattr(task_class, "task_observations", ()))
+    if not own:
+        return SHIP_OBSERVATION_TABLE
+    first = len(SHIP_OBSERVATIONS)
+    last = first + len(own)
+    preview = (
+        f"| {last}… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |"
+    )
+    rows = markdown_table(own, first=first, header=False)
+    return f"{SHIP_OBSERVATION_TABLE}\n{rows}\n{preview}"
+
+
 def reset_options_table(task_class: type[BatchedTask]) -> str:
     """The reset-options paragraph and table of a ship task (closing its Starting State
     section): every key it accepts, its unit and range."""
@@ -190,7 +206,7 @@ def env_docstring(
     """Class decorator completing a ship environment's Gymnasium v5 docstring.
 
     The class docstring holds the sections Description … Episode End; this fills the markers
-    ``{ship_observations}`` (:data:`SHIP_OBSERVATION_TABLE`) and ``{time_limit}`` (the
+    ``{ship_observations}`` (:func:`observation_table`) and ``{time_limit}`` (the
     registered ``MAX_EPISODE_STEPS`` of ``<Name>Env`` and its duration at the default control
     step) where it has them, and appends ``## Arguments`` (:func:`arguments_table` of the
     class's ``task_class``, with the environment's own ``arguments`` rows, name → (unit,
@@ -202,7 +218,7 @@ def env_docstring(
         name = cls.__name__.removesuffix("Env")
         doc = (cls.__doc__ or "").rstrip()
         if "{ship_observations}" in doc:
-            doc = _fill(doc, "ship_observations", SHIP_OBSERVATION_TABLE)
+            doc = _fill(doc, "ship_observations", observation_table(task_class))
         if "{time_limit}" in doc:
             doc = _fill(doc, "time_limit", _time_limit(name, task_class))
         # the reset options close the Starting State section (the v5 sections stay as they are)

@@ -422,7 +422,6 @@ class ConfigShipTask(ShipEnvTask, abc.ABC):
     defaults: ClassVar[ShipConfig] = ShipConfig()
     steering: ClassVar[Literal["autopilot", "command"]] = "autopilot"
     setup_changes: ClassVar[tuple[tuple[str, Any], ...]] = ()
-    task_observations: ClassVar[tuple[Observation, ...]] = ()
 
     def __init__(self, num_envs: int, **config: Any) -> None:
         self.config = type(self).defaults.replace(**config)

@@ -131,8 +131,8 @@ class Observation:
         if self.bound:
             return self.bound
         if self.low == -self.high:
-            return f"±{self.high:g}"
-        return f"{self.low:g} … {self.high:g}"
+            return f"±{self.high:.3g}"
+        return f"{self.low:.3g} … {self.high:.3g}"
 
     def matches(self, keyword: str) -> bool:
         """Whether ``keyword`` (any case) is this entry's name or one of its aliases."""

@@ -33,6 +33,7 @@ from ship_gym.envs.env_task import (
     point_scaled_from_s175,
     ship_kwargs,
 )
+from ship_gym.envs.observations import Observation
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.ship_task import StepStatistics
 from ship_gym.envs.validation import check_point, check_positive, check_weight
@@ -51,6 +52,7 @@ MAX_EPISODE_STEPS = max_episode_steps("RollStabilization")
 
 FIN_LIMIT_DEG = 25.0
 """Fin angle limit of the servo [deg] (:data:`ship_gym.control.actuators.FIN_SERVO`)."""
+_FIN_LIMIT = math.radians(FIN_LIMIT_DEG)
 S175_PASSENGER_POINT_M = (-50.0, 10.0, -15.0)
 """Default passenger position on the S175 [m] (aft, off the centreline, high in the
 superstructure); on another ship scaled by
@@ -151,6 +153,18 @@ class ComfortShipTask(ShipEnvTask):
 class RollStabilizationTask(ComfortShipTask):
     """N roll-stabilisation episodes (see :class:`RollStabilizationEnv` for the arguments)."""
 
+    task_observations = (
+        Observation("fin angle", "rad", -math.pi / 2, math.pi / 2, doc="fin angle (servo)",
+                    bound="±π/2"),
+        Observation("lateral specific force at the passenger", "m/s^2", -30.0, 30.0,
+                    doc="lateral specific force f_y at the passenger point"),
+        Observation("fin command", "rad", -_FIN_LIMIT, _FIN_LIMIT,
+                    doc="fin command δ_c (the servo follows it at ≤ 15 °/s)"),
+        Observation("fin travel over the last step", "rate limit x step", -1.0, 1.0,
+                    doc="fin travel over the last control step Δδ/(δ̇_max Δt)"),
+    )  # fmt: skip
+    """The task's observation entries (written by :meth:`_write_extra_observations`)."""
+
     def __init__(
         self,
         num_envs: int,
@@ -230,12 +244,7 @@ class RollStabilizationTask(ComfortShipTask):
             rudder="command" if rudder_roll_stabilization else "autopilot",
             setup_changes={"fins": "command"},
             sea=irregular_sea(args),
-            extra_observations=(
-                ("fin angle [rad]", -math.pi / 2, math.pi / 2),
-                ("lateral specific force at the passenger [m/s^2]", -30.0, 30.0),
-                ("fin command [rad]", -fin_limit, fin_limit),
-                ("fin travel over the last step [rate limit x step]", -1.0, 1.0),
-            ),
+            extra_observations=self.task_observations,
             **ship_kwargs(args),
         )
         self.fin_limit = fin_limit
@@ -336,11 +345,6 @@ class RollStabilizationEnv(TaskEnv):
     ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
 
     {ship_observations}
-    | 14 | fin angle (servo) | rad | ±π/2 |
-    | 15 | lateral specific force f_y at the passenger point | m/s² | ±30 |
-    | 16 | fin command δ_c (the servo follows it at ≤ 15 °/s) | rad | ±0.436 |
-    | 17 | fin travel over the last control step Δδ/(δ̇_max Δt) | - | ±1 |
-    | 18… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     The accelerations at the passenger point use ν̇ from the backward difference of ν over the
     control step (:class:`ship_gym.comfort.metrics.PassengerComfort`).

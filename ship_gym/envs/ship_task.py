@@ -63,7 +63,7 @@ import abc
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numba
 import numpy as np
@@ -327,6 +327,10 @@ class ShipTask(BatchedTask, abc.ABC):
     num_threads: int = 1
     """numba threads over the ships in the compiled loop (set by :class:`ShipEnvTask`)."""
     observations_bounded = True  # observations() is a float32 copy, clipped to the bounds
+    task_observations: ClassVar[tuple[Observation, ...]] = ()
+    """The task's own observation entries, after the common ones (a subclass passes them as
+    ``extra_observations``; :func:`~ship_gym.envs.docstrings.env_docstring` writes their rows
+    of the environment's observation table from them)."""
 
     def __init__(
         self,

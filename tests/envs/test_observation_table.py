@@ -57,6 +57,16 @@ def test_the_docstring_table_is_generated_from_the_table(env):
     assert "| 9 | heading error wrap(ψ_ref − ψ) | rad | ±π |" in type(env.unwrapped).__doc__
 
 
+def test_the_tasks_rows_of_the_docstring_table_come_from_their_entries():
+    from ship_gym.envs.capsize_avoidance import CapsizeAvoidanceEnv, CapsizeAvoidanceTask
+
+    doc = CapsizeAvoidanceEnv.__doc__
+    assert "| 16 | telegraph f | × self-propulsion rpm | 0 … 2 |" in doc
+    assert "| 21… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |" in doc
+    task = CapsizeAvoidanceTask(1, hull_mesh=COARSE["hull_mesh"])
+    assert task.observation_entries[14:21] == CapsizeAvoidanceTask.task_observations
+
+
 def test_extra_observation_tuples_become_entries():
     entry = observation_from_tuple(("fin command [rad]", -0.4, 0.4))
     assert entry == Observation("fin command", "rad", -0.4, 0.4)
