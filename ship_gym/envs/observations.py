@@ -23,14 +23,11 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Literal
+from typing import Any, Literal
 
 import numba
 import numpy as np
 from numpy.typing import NDArray
-
-if TYPE_CHECKING:
-    from ship_gym.envs.ship_task import ShipTask
 
 __all__ = [
     "PREVIEW_NOISE_STD",
@@ -78,8 +75,9 @@ SIGNALS: tuple[str, ...] = (
 wrap(ψ_ref − ψ) [rad], cos β and sin β of β = χ − ψ [-], the servo rudder angle [rad] and the
 shaft speed [rev/s] (computed once per step by :class:`~ship_gym.envs.ship_task.ShipTask`)."""
 
-Getter = Callable[["ShipTask"], Any]
-"""A task entry's getter: the task → its (N,) values [unit of the entry]."""
+Getter = Callable[[Any], Any]
+"""A task entry's getter: the task (a :class:`~ship_gym.envs.ship_task.ShipTask` subclass) →
+its (N,) values [unit of the entry]."""
 
 
 @dataclass(frozen=True)
