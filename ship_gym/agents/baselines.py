@@ -8,8 +8,10 @@ so that the same evaluation code (:mod:`ship_gym.agents.evaluate`, or SB3's
 ``evaluate_policy``) runs learned and classical policies. They read the environment's
 ``observation_names`` and ``action_names`` (ship_gym envs name every entry with its unit, e.g.
 ``"roll rate [rad/s]"``) and look their inputs and outputs up *by name*, so they survive layout
-changes; a missing name raises a ``ValueError`` listing what the environment offers. Build them
-with ``Baseline.for_env(env)``.
+changes: an observation through the env's observation table
+(:mod:`ship_gym.envs.observations`: the entry whose name or alias is the keyword, its unit from
+the table), an action by its name; a missing name raises a ``ValueError`` listing what the
+environment offers. Build them with ``Baseline.for_env(env)``.
 
 Observations in degrees (``[deg]``, ``[deg/s]``) are converted to radians. Actions are in the
 env's normalised units (``Box(-1, 1)``): the gains below are "action units per SI unit", i.e.
@@ -45,6 +47,7 @@ from numpy.typing import NDArray
 
 from ship_gym.agents.roll_risk import RollResponse, response_of, roll_exceedance_probability
 from ship_gym.conventions import GRAVITY
+from ship_gym.envs.observations import Observation, find_observation
 
 __all__ = [
     "BASELINES",
@@ -111,22 +114,56 @@ def find_name(
 
 @dataclass(frozen=True)
 class EnvLayout:
-    """What a baseline needs to know of an env: names, control step, env id."""
+    """What a baseline needs to know of an env: names, observation table, control step, env id.
+
+    Attributes
+    ----------
+    observation_names, action_names : tuple of str
+        The env's names (with units).
+    control_dt : float
+        Control step [s].
+    env_id : str or None
+        The registered id.
+    observation_entries : tuple of Observation
+        The env's observation table (:mod:`ship_gym.envs.observations`); empty: the entries are
+        read from the names (``"name [unit]"``).
+    """
 
     observation_names: tuple[str, ...]
     action_names: tuple[str, ...]
     control_dt: float
     env_id: str | None = None
+    observation_entries: tuple[Observation, ...] = ()
+
+    def entries(self) -> tuple[Observation, ...]:
+        """The observation table (from the names when the env has none)."""
+        if self.observation_entries:
+            return self.observation_entries
+        out = []
+        for label in self.observation_names:
+            base, unit = _base_and_unit(label)
+            out.append(Observation(base, unit or "-", -math.inf, math.inf))
+        return tuple(out)
 
     def observation(self, keywords: Sequence[str], *, required: bool = True) -> tuple[int, float]:
-        """(index, factor to SI) of an observation; index −1 if optional and missing."""
-        i = find_name(
-            self.observation_names, keywords, what=f"observation {keywords[0]!r}", required=required
-        )
+        """(index, factor to SI) of an observation; index −1 if optional and missing.
+
+        The entry of the table whose name or alias is the first of ``keywords`` found (no
+        pattern on the labels); an env whose names are not those of the table falls back to
+        :func:`find_name` (whole words of the labels).
+        """
+        entries = self.entries()
+        i = find_observation(entries, keywords)
         if i is None:
-            return -1, 1.0
-        unit = _base_and_unit(self.observation_names[i])[1]
-        return i, _DEGREE_UNITS.get(unit or "", 1.0)
+            i = find_name(
+                self.observation_names,
+                keywords,
+                what=f"observation {keywords[0]!r}",
+                required=required,
+            )
+            if i is None:
+                return -1, 1.0
+        return i, _DEGREE_UNITS.get(entries[i].unit, 1.0)
 
     def action(self, keywords: Sequence[str]) -> int:
         i = find_name(self.action_names, keywords, what=f"action {keywords[0]!r}")
@@ -162,7 +199,17 @@ def env_layout(env: Any) -> EnvLayout:
         action_names=tuple(_env_attr(env, "action_names")),
         control_dt=float(_env_attr(env, "control_dt")),
         env_id=getattr(spec, "id", None),
+        observation_entries=_observation_entries(env),
     )
+
+
+def _observation_entries(env: Any) -> tuple[Observation, ...]:
+    """The env's observation table, or () when it has none."""
+    try:
+        entries = tuple(_env_attr(env, "observation_entries"))
+    except (ValueError, AttributeError):
+        return ()
+    return entries if all(isinstance(e, Observation) for e in entries) else ()
 
 
 _GAIN_PREFIXES = ("k_", "gain")

@@ -302,6 +302,12 @@ class _TaskView:
         return self.task.observation_names
 
     @property
+    def observation_entries(self) -> tuple[Any, ...]:
+        """The task's observation table (:class:`ship_gym.envs.observations.Observation` per
+        entry: name, unit, bounds, noise; empty for a task without one)."""
+        return tuple(getattr(self.task, "observation_entries", ()))
+
+    @property
     def action_names(self) -> tuple[str, ...]:
         """Names (with the physical scaling) of one episode's action entries."""
         return self.task.action_names

@@ -36,6 +36,7 @@ from ship_gym.envs.docstrings import (
     vector_env_docstring,
 )
 from ship_gym.envs.env_task import S175_MESH, ShipEnvTask, ship_kwargs, ship_particulars
+from ship_gym.envs.observations import Observation
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.ship_task import StepStatistics
@@ -108,6 +109,23 @@ def _write_observations_kernel(
 
 class CapsizeAvoidanceTask(ShipEnvTask):
     """N capsize-avoidance episodes (see :class:`CapsizeAvoidanceEnv` for the arguments)."""
+
+    task_observations = (
+        Observation("heading from voyage course", "rad", -math.pi, math.pi,
+                    doc="heading ψ from the voyage course (wrapped)", bound="±π"),
+        Observation("heading set-point from voyage course", "rad", -math.pi, math.pi,
+                    doc="heading set-point from the voyage course (wrapped)", bound="±π"),
+        Observation("telegraph", "× self-propulsion rpm", 0.0, 2.0, doc="telegraph f"),
+        Observation("wave period", "s", 0.0, 60.0,
+                    doc="wave period T_W as observed (T of a regular wave, Tp of a spectrum)"),
+        Observation("wavelength / ship length", "-", 0.0, 20.0,
+                    doc="λ/L, λ = g T_W²/2π (deep water)"),
+        Observation("wave height / ship length", "-", 0.0, 0.5,
+                    doc="H/L (H of a regular wave, Hs of a spectrum)"),
+        Observation("roll natural period", "s", 0.0, 100.0,
+                    doc="roll natural period T_R of the episode's loading (T_R,nom √(GM_nom/GM))"),
+    )  # fmt: skip
+    """The task's observation entries (written by :meth:`_write_extra_observations`)."""
 
     def __init__(
         self,
@@ -213,15 +231,7 @@ class CapsizeAvoidanceTask(ShipEnvTask):
             rudder="autopilot",
             sea=sea,
             speed_range_mps=speed_range,
-            extra_observations=(
-                ("heading from voyage course [rad]", -math.pi, math.pi),
-                ("heading set-point from voyage course [rad]", -math.pi, math.pi),
-                ("telegraph [× self-propulsion rpm]", 0.0, 2.0),
-                ("wave period [s]", 0.0, 60.0),
-                ("wavelength / ship length [-]", 0.0, 20.0),
-                ("wave height / ship length [-]", 0.0, 0.5),
-                ("roll natural period [s]", 0.0, 100.0),
-            ),
+            extra_observations=self.task_observations,
             **ship_kwargs(args),
         )
         n = self.num_envs
@@ -376,14 +386,6 @@ class CapsizeAvoidanceEnv(TaskEnv):
     ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
 
     {ship_observations}
-    | 14 | heading ψ from the voyage course (wrapped) | rad | ±π |
-    | 15 | heading set-point from the voyage course (wrapped) | rad | ±π |
-    | 16 | telegraph f | × self-propulsion rpm | 0 … 2 |
-    | 17 | wave period T_W as observed (T of a regular wave, Tp of a spectrum) | s | 0 … 60 |
-    | 18 | λ/L, λ = g T_W²/2π (deep water) | - | 0 … 20 |
-    | 19 | H/L (H of a regular wave, Hs of a spectrum) | - | 0 … 0.5 |
-    | 20 | roll natural period T_R of the episode's loading (T_R,nom √(GM_nom/GM)) | s | 0 … 100 |
-    | 21… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     ## Rewards
 

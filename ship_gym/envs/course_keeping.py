@@ -29,6 +29,7 @@ from ship_gym.envs.env_task import (
     irregular_sea,
     ship_kwargs,
 )
+from ship_gym.envs.observations import Observation
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.ship_task import StepStatistics, clip_into, write_heading_observations
 from ship_gym.envs.validation import check_positive, check_real, check_weight
@@ -36,12 +37,27 @@ from ship_gym.typing import ForwardSpeedModel, IntegratorName, Precision
 
 __all__ = ["MAX_EPISODE_STEPS", "CourseKeepingEnv", "CourseKeepingTask", "CourseKeepingVectorEnv"]
 
+_RUDDER_LIMIT = math.radians(RUDDER_LIMIT_DEG)
+
 MAX_EPISODE_STEPS = max_episode_steps("CourseKeeping")
 """Time limit in control steps, from the registration (500 s at the default control_dt)."""
 
 
 class CourseKeepingTask(ShipEnvTask):
     """N course-keeping episodes (see :class:`CourseKeepingEnv` for the keyword arguments)."""
+
+    task_observations = (
+        Observation("heading", "rad", -math.pi, math.pi, doc="heading ψ (wrapped)", bound="±π"),
+        Observation("heading set-point", "rad", -math.pi, math.pi,
+                    doc="heading set-point ψ_ref (wrapped)", bound="±π"),
+        Observation("rudder command", "rad", -_RUDDER_LIMIT, _RUDDER_LIMIT),
+        Observation("heading error integral", "rad s", -10.0 * math.pi, 10.0 * math.pi,
+                    doc="heading-error integral I, İ = e − I/τ (τ = ``heading_integral_time_s``)",
+                    bound="±10π"),
+        Observation("rudder travel over the last step", "rate limit x step", -1.0, 1.0,
+                    doc="rudder travel over the last control step Δδ/(δ̇_max Δt)"),
+    )  # fmt: skip
+    """The task's observation entries (written by :meth:`_write_extra_observations`)."""
 
     def __init__(
         self,
@@ -121,13 +137,7 @@ class CourseKeepingTask(ShipEnvTask):
             num_envs,
             rudder="command",
             sea=irregular_sea(args),
-            extra_observations=(
-                ("heading [rad]", -math.pi, math.pi),
-                ("heading set-point [rad]", -math.pi, math.pi),
-                ("rudder command [rad]", -self.rudder_limit, self.rudder_limit),
-                ("heading error integral [rad s]", -10.0 * math.pi, 10.0 * math.pi),
-                ("rudder travel over the last step [rate limit x step]", -1.0, 1.0),
-            ),
+            extra_observations=self.task_observations,
             **ship_kwargs(args),
         )
         n = self.num_envs
@@ -233,12 +243,6 @@ class CourseKeepingEnv(TaskEnv):
     ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
 
     {ship_observations}
-    | 14 | heading ψ (wrapped) | rad | ±π |
-    | 15 | heading set-point ψ_ref (wrapped) | rad | ±π |
-    | 16 | rudder command | rad | ±0.611 |
-    | 17 | heading-error integral I, İ = e − I/τ (τ = ``heading_integral_time_s``) | rad·s | ±10π |
-    | 18 | rudder travel over the last control step Δδ/(δ̇_max Δt) | - | ±1 |
-    | 19… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     ``sensor_noise`` adds Gaussian noise of ``sensor_noise`` × the accuracies of
     :data:`ship_gym.envs.ship_task.SENSOR_NOISE_STD` (0.1 m on the preview).

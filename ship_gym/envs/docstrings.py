@@ -9,6 +9,8 @@ import re
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, TypeVar
 
+from ship_gym.envs.config import SHIP_FIELDS, documented_rows
+from ship_gym.envs.observations import SHIP_OBSERVATIONS, markdown_table
 from ship_gym.envs.registration import max_episode_steps
 
 if TYPE_CHECKING:
@@ -18,61 +20,29 @@ if TYPE_CHECKING:
 # =============================================================================================
 # the environments' docstrings: shared pieces, written once
 # =============================================================================================
-SHIP_OBSERVATION_TABLE = """\
-| # | name | unit | bound |
-|---|---|---|---|
-| 0 | roll φ | rad | ±π |
-| 1 | pitch θ | rad | ±π/2 |
-| 2 | heave (from the calm-water equilibrium, down positive) | m | ±30 |
-| 3–5 | roll rate p, pitch rate q, heave velocity w (body) | rad/s, rad/s, m/s | 5, 5, 30 |
-| 6 | yaw rate r | rad/s | ±2 |
-| 7–8 | surge speed u, sway velocity v | m/s | ±30 |
-| 9 | heading error wrap(ψ_ref − ψ) | rad | ±π |
-| 10–11 | cos β, sin β of the mean relative wave heading β = χ − ψ | - | ±1 |
-| 12 | rudder angle (servo) | rad | ±π/2 |
-| 13 | shaft speed | rev/s | ±20 |"""
-"""Markdown rows of the common observation entries 0–13 of every S175 task (the names and
-bounds of ``_BASE_OBSERVATIONS``, the rudder angle and the shaft speed)."""
+SHIP_OBSERVATION_TABLE = markdown_table(SHIP_OBSERVATIONS)
+"""Markdown rows of the common observation entries 0–13 of every ship task, generated from the
+observation table (:data:`~ship_gym.envs.observations.SHIP_OBSERVATIONS`)."""
 
-SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
-    # name: (unit, meaning); an environment may give its own meaning for any of them
-    "ship": ("-", "bundled ship name or ship file (.toml; ship-gym ship check FILE)"),
-    "froude_number": ("-", "reference speed U = Fn √(g L) (radiation, diffraction, propeller)"),
-    "speed_range_mps": ("m/s", "initial speed range (self-propulsion rpm); keep near U"),
-    "hs_range_m": ("m", "significant wave height range"),
-    "tp_range_s": ("s", "peak period range"),
-    "wave_heading_range_deg": ("deg", "relative wave heading β (0 following, 180 head seas)"),
-    "n_wave_components": ("-", "components of the irregular sea"),
-    "wave_spreading_s": ("-", "cos-2s spreading exponent (None: long-crested)"),
-    "wave_ramp_time_s": ("s", "start-up ramp of the waves (Matusiak 2003, eq. 12)"),
-    "gm_range_m": ("m", "GM range of the loading (per episode; None: nominal)"),
-    "kg_m": ("m", "KG of the nominal loading (None: the ship's; S175 9.55 m)"),
-    "passenger_point_m": ("m", "body-frame passenger position (z down; None: scaled S175 point)"),
-    "physics_dt_s": ("s", "physics time step"),
-    "control_dt_s": ("s", "control step (integer multiple of physics_dt_s)"),
-    "integrator": ("-", '"holloway" (1 force evaluation/step) or "rk4" (4)'),
-    "hull_mesh": ("-", "offsets-hull mesh (sections, panels below/above water, deck)"),
-    "precision": ("-", '"float32" or "float64" wave sums of the Froude–Krylov kernel'),
-    "forward_speed_model": (
-        "-",
-        '"relative_motion" (speed terms on the motion relative to the waves) or '
-        '"radiation_only" (the -v2 model)',
-    ),
-    "num_threads": ("-", "numba threads over the batch's ships (1: serial)"),
-    "capsize_angle_deg": ("deg", "capsize roll angle (None: vanishing angle of the loading)"),
-    "dangerous_roll_deg": ("deg", "roll angle of the Safe-RL cost"),
-    "heading_weight": ("-", "weight of the heading term"),
-    "heading_scale_deg": ("deg", "heading error scale"),
-    "roll_weight": ("-", "weight of the roll term"),
-    "roll_scale_deg": ("deg", "roll scale"),
-    "effort_weight": ("-", "weight of the actuator effort term"),
-    "capsize_penalty": ("-", "penalty paid at capsize"),
-    "comfort_time_constant_s": ("s", "time constant of the running acceleration RMS"),
-    "sensor_noise": ("-", "multiplier of the sensor accuracies (SENSOR_NOISE_STD)"),
-    "wave_preview_m": ("m", "elevation preview: distances ahead of O, or (x, y) body-frame points"),
-}
+SHIP_ARGUMENTS: dict[str, tuple[str, str]] = documented_rows(
+    {
+        # the rows of the keyword arguments several environments share beyond ShipConfig's
+        "passenger_point_m": (
+            "m",
+            "body-frame passenger position (z down; None: scaled S175 point)",
+        ),
+        "heading_weight": ("-", "weight of the heading term"),
+        "heading_scale_deg": ("deg", "heading error scale"),
+        "roll_weight": ("-", "weight of the roll term"),
+        "roll_scale_deg": ("deg", "roll scale"),
+        "effort_weight": ("-", "weight of the actuator effort term"),
+        "comfort_time_constant_s": ("s", "time constant of the running acceleration RMS"),
+    }
+)
 """Unit and meaning of the keyword arguments shared by the ship environments (the rows of the
-``## Arguments`` tables; :func:`env_docstring` takes each default from the task's signature)."""
+``## Arguments`` tables; :func:`env_docstring` takes each default from the task's signature):
+the fields of :class:`~ship_gym.envs.config.ShipConfig` (their single source), then the reward
+and comfort arguments several environments share."""
 
 
 RESET_OPTION_ROWS: dict[str, tuple[str, str]] = {
@@ -92,6 +62,22 @@ RESET_OPTION_ROWS: dict[str, tuple[str, str]] = {
     "heading_setpoint_deg": ("deg", "initial heading set-point (instead of the drawn error)"),
 }
 """Unit and meaning of the ``reset(options=...)`` keys of the ship environments."""
+
+
+def observation_table(task_class: type[BatchedTask]) -> str:
+    """The observation table of a ship task's environment docstring: the common entries
+    (:data:`SHIP_OBSERVATION_TABLE`), the task's own (its ``task_observations``) and the
+    wave preview, all from the observation table (:mod:`ship_gym.envs.observations`)."""
+    own = tuple(getattr(task_class, "task_observations", ()))
+    if not own:
+        return SHIP_OBSERVATION_TABLE
+    first = len(SHIP_OBSERVATIONS)
+    last = first + len(own)
+    preview = (
+        f"| {last}… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |"
+    )
+    rows = markdown_table(own, first=first, header=False)
+    return f"{SHIP_OBSERVATION_TABLE}\n{rows}\n{preview}"
 
 
 def reset_options_table(task_class: type[BatchedTask]) -> str:
@@ -130,9 +116,25 @@ def _format_default(value: Any) -> str:
 
 
 def _task_parameters(task_class: type[BatchedTask]) -> list[inspect.Parameter]:
-    """The keyword arguments of ``task_class.__init__`` after ``num_envs``."""
+    """The keyword arguments of ``task_class.__init__`` after ``num_envs``; a ``**config``
+    (a task written the small way, :class:`~ship_gym.envs.env_task.ConfigShipTask`) stands for
+    the :class:`~ship_gym.envs.config.ShipConfig` fields, with the task's ``defaults``."""
     params = list(inspect.signature(task_class.__init__).parameters.values())
-    return [p for p in params[1:] if p.name != "num_envs"]
+    out = []
+    for p in params[1:]:
+        if p.name == "num_envs":
+            continue
+        if p.kind is inspect.Parameter.VAR_KEYWORD:
+            defaults = getattr(task_class, "defaults", None)
+            named = {q.name for q in params}
+            for name in SHIP_FIELDS:
+                if name not in named and defaults is not None:
+                    kind = inspect.Parameter.KEYWORD_ONLY
+                    default = getattr(defaults, name)
+                    out.append(inspect.Parameter(name, kind, default=default))
+            continue
+        out.append(p)
+    return out
 
 
 def arguments_table(task_class: type[BatchedTask], rows: Mapping[str, tuple[str, str]]) -> str:
@@ -204,7 +206,7 @@ def env_docstring(
     """Class decorator completing a ship environment's Gymnasium v5 docstring.
 
     The class docstring holds the sections Description … Episode End; this fills the markers
-    ``{ship_observations}`` (:data:`SHIP_OBSERVATION_TABLE`) and ``{time_limit}`` (the
+    ``{ship_observations}`` (:func:`observation_table`) and ``{time_limit}`` (the
     registered ``MAX_EPISODE_STEPS`` of ``<Name>Env`` and its duration at the default control
     step) where it has them, and appends ``## Arguments`` (:func:`arguments_table` of the
     class's ``task_class``, with the environment's own ``arguments`` rows, name → (unit,
@@ -216,7 +218,7 @@ def env_docstring(
         name = cls.__name__.removesuffix("Env")
         doc = (cls.__doc__ or "").rstrip()
         if "{ship_observations}" in doc:
-            doc = _fill(doc, "ship_observations", SHIP_OBSERVATION_TABLE)
+            doc = _fill(doc, "ship_observations", observation_table(task_class))
         if "{time_limit}" in doc:
             doc = _fill(doc, "time_limit", _time_limit(name, task_class))
         # the reset options close the Starting State section (the v5 sections stay as they are)

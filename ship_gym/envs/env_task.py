@@ -10,12 +10,14 @@ import abc
 import dataclasses
 import math
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.conventions import GRAVITY
+from ship_gym.envs.config import FROUDE_LIMITS, PHYSICS_DT_LIMITS, SHIP_FIELDS, ShipConfig
+from ship_gym.envs.observations import Observation
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.ship_task import ShipTask, StepStatistics
 from ship_gym.envs.validation import check_real
@@ -25,7 +27,7 @@ if TYPE_CHECKING:
     from ship_gym.engine.ship import ShipSetup
 
 
-S175_MESH: tuple[int, int, int, int] = (60, 12, 6, 4)
+S175_MESH: tuple[int, int, int, int] = ShipConfig.hull_mesh
 """Default S175 mesh resolution (n_sections, n_below, n_above, n_deck): 2400 panels, the
 library hull's. Against a 9600-panel mesh (``docs/accuracy/results.md``): GZ within 2.4 mm, roll
 period −0.28 %, RMS roll +2.8 % in a stern-quartering sea near roll resonance."""
@@ -139,8 +141,10 @@ def task_setup(
 
     ship = check_ship(ship)
     described = load_ship(ship)
-    froude_number = check_real("froude_number", froude_number, low=0.05, high=0.5, unit="-")
-    physics_dt = check_real("physics_dt_s", physics_dt, low=0.01, high=0.5, unit="s")
+    low, high = FROUDE_LIMITS
+    froude_number = check_real("froude_number", froude_number, low=low, high=high, unit="-")
+    low, high = PHYSICS_DT_LIMITS
+    physics_dt = check_real("physics_dt_s", physics_dt, low=low, high=high, unit="s")
     if integrator not in ("holloway", "rk4"):
         raise ValueError(f"integrator must be 'holloway' or 'rk4', got {integrator!r}")
     if precision not in ("float32", "float64"):
@@ -220,27 +224,20 @@ def forward_speed_fields(model: str) -> dict[str, Any]:
 # =============================================================================================
 # the S175 task built from the environments' shared keyword arguments
 # =============================================================================================
-SHIP_KWARGS: tuple[str, ...] = (
-    "ship",
-    "froude_number",
-    "speed_range_mps",
-    "gm_range_m",
-    "kg_m",
-    "physics_dt_s",
-    "control_dt_s",
-    "integrator",
-    "hull_mesh",
-    "precision",
-    "num_threads",
-    "capsize_angle_deg",
-    "dangerous_roll_deg",
-    "capsize_penalty",
-    "sensor_noise",
-    "wave_preview_m",
-    "forward_speed_model",
+SEA_KWARGS: tuple[str, ...] = (
+    "hs_range_m",
+    "tp_range_s",
+    "wave_heading_range_deg",
+    "n_wave_components",
+    "wave_spreading_s",
+    "wave_ramp_time_s",
 )
+"""The :class:`~ship_gym.envs.config.ShipConfig` fields of the irregular sea
+(:func:`irregular_sea`)."""
+
+SHIP_KWARGS: tuple[str, ...] = tuple(name for name in SHIP_FIELDS if name not in SEA_KWARGS)
 """The environment keyword arguments :class:`ShipEnvTask` takes as they are
-(:func:`ship_kwargs`)."""
+(:func:`ship_kwargs`): the :class:`~ship_gym.envs.config.ShipConfig` fields but the sea's."""
 
 
 def ship_kwargs(values: Mapping[str, Any]) -> dict[str, Any]:
@@ -305,8 +302,8 @@ class ShipEnvTask(ShipTask, abc.ABC):
     setup_changes : mapping, optional
         :class:`ship_gym.engine.ship.ShipSetup` fields replaced after :func:`task_setup`
         (e.g. ``{"fins": "command"}``).
-    extra_observations : sequence of (name, low, high)
-        The subclass's observation entries.
+    extra_observations : sequence of Observation or of (name, low, high)
+        The subclass's observation entries (:class:`ShipTask`).
     """
 
     def __init__(
@@ -331,7 +328,7 @@ class ShipEnvTask(ShipTask, abc.ABC):
         speed_range_mps: tuple[float, float] | None = None,
         gm_range_m: tuple[float, float] | None = None,
         setup_changes: Mapping[str, Any] | None = None,
-        extra_observations: Sequence[tuple[str, float, float]] = (),
+        extra_observations: Sequence[tuple[str, float, float] | Observation] = (),
         ship: str = "s175",
         forward_speed_model: ForwardSpeedModel = "relative_motion",
     ) -> None:
@@ -386,3 +383,65 @@ class ShipEnvTask(ShipTask, abc.ABC):
     def heading_term(self, weight: float, scale: float) -> NDArray:
         """−weight · (e/scale)², e the wrapped heading error (scale [rad])."""
         return -weight * (self._current_heading_error() / scale) ** 2
+
+
+# =============================================================================================
+# a task written the small way: the config, the observation table and two hooks
+# =============================================================================================
+class ConfigShipTask(ShipEnvTask, abc.ABC):
+    """A ship task declared in a few lines: its shared keyword arguments are a
+    :class:`~ship_gym.envs.config.ShipConfig`, its observations a table of
+    :class:`~ship_gym.envs.observations.Observation` with getters.
+
+    A subclass sets the class attributes below, takes its own keyword arguments explicitly
+    (typed, with units) and the shared ones as ``**config``, and implements
+    :meth:`~ShipTask._apply_actions` and :meth:`~ShipTask._reward_terms` (the other hooks of
+    :class:`~ship_gym.envs.ship_task.ShipTask` stay available). The ``## Arguments`` table of
+    its environment lists ``**config`` as the ShipConfig fields with :attr:`defaults`
+    (:func:`ship_gym.envs.docstrings.arguments_table`). ``docs/tutorials/your_own_task.md``
+    writes one.
+
+    Class attributes
+    ----------------
+    defaults : ShipConfig
+        The task's defaults of the shared keyword arguments (the sea included: an irregular
+        JONSWAP sea from the ``hs_range_m`` … ``wave_ramp_time_s`` fields; override
+        :meth:`make_sea` for another).
+    steering : {"autopilot", "command"}
+        The rudder under the heading autopilot, or following ``commands["rudder_command"]``.
+    setup_changes : tuple of (str, object)
+        :class:`~ship_gym.engine.ship.ShipSetup` fields replaced, as (name, value) pairs
+        (``(("fins", "command"),)``).
+    task_observations : tuple of Observation
+        The task's entries after the common ones, each with a getter (a function of the task
+        returning the (N,) values).
+    action_names : tuple of str
+        Names of the action entries (with the physical scaling).
+
+    Parameters
+    ----------
+    num_envs : int
+        Number of episodes N.
+    **config
+        :class:`~ship_gym.envs.config.ShipConfig` fields (ValueError naming an unknown one).
+    """
+
+    defaults: ClassVar[ShipConfig] = ShipConfig()
+    steering: ClassVar[Literal["autopilot", "command"]] = "autopilot"
+    setup_changes: ClassVar[tuple[tuple[str, Any], ...]] = ()
+
+    def __init__(self, num_envs: int, **config: Any) -> None:
+        self.config = type(self).defaults.replace(**config)
+        """The task's :class:`~ship_gym.envs.config.ShipConfig`."""
+        super().__init__(
+            num_envs,
+            rudder=self.steering,
+            sea=self.make_sea(self.config),
+            setup_changes=dict(self.setup_changes),
+            extra_observations=self.task_observations,
+            **self.config.values(SHIP_KWARGS),
+        )
+
+    def make_sea(self, config: ShipConfig) -> SeaSampler:
+        """The episodes' sea: the irregular sea of the config's sea fields."""
+        return irregular_sea(config.values(SEA_KWARGS))

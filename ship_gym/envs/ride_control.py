@@ -22,6 +22,7 @@ from ship_gym.envs.docstrings import (
     vector_env_docstring,
 )
 from ship_gym.envs.env_task import S175_MESH, irregular_sea, point_scaled_from_s175, ship_kwargs
+from ship_gym.envs.observations import Observation
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.roll_stabilisation import ComfortShipTask
 from ship_gym.envs.ship_task import StepStatistics
@@ -35,6 +36,7 @@ MAX_EPISODE_STEPS = max_episode_steps("RideControl")
 
 FOIL_LIMIT_DEG = 15.0
 """T-foil angle limit of the servo [deg] (:data:`ship_gym.control.actuators.FOIL_SERVO`)."""
+_FOIL_LIMIT = math.radians(FOIL_LIMIT_DEG)
 S175_PASSENGER_POINT_M = (50.0, 0.0, -10.0)
 """Default passenger position on the S175 [m] (forward, on the centreline, above the deck); on
 another ship scaled by :func:`~ship_gym.envs.env_task.point_scaled_from_s175`."""
@@ -42,6 +44,18 @@ another ship scaled by :func:`~ship_gym.envs.env_task.point_scaled_from_s175`.""
 
 class RideControlTask(ComfortShipTask):
     """N ride-control episodes (see :class:`RideControlEnv` for the keyword arguments)."""
+
+    task_observations = (
+        Observation("T-foil angle", "rad", -math.pi / 2, math.pi / 2, doc="T-foil angle (servo)",
+                    bound="±π/2"),
+        Observation("vertical acceleration at the passenger", "m/s^2", -30.0, 30.0,
+                    doc="earth-vertical acceleration at the passenger point (down positive)"),
+        Observation("T-foil command", "rad", -_FOIL_LIMIT, _FOIL_LIMIT,
+                    doc="T-foil command δ_c (the servo follows it at ≤ 20 °/s)"),
+        Observation("T-foil travel over the last step", "rate limit x step", -1.0, 1.0,
+                    doc="T-foil travel over the last control step Δδ/(δ̇_max Δt)"),
+    )  # fmt: skip
+    """The task's observation entries (written by :meth:`_write_extra_observations`)."""
 
     def __init__(
         self,
@@ -99,12 +113,7 @@ class RideControlTask(ComfortShipTask):
             rudder="autopilot",
             setup_changes={"t_foil": "command"},
             sea=irregular_sea(args),
-            extra_observations=(
-                ("T-foil angle [rad]", -math.pi / 2, math.pi / 2),
-                ("vertical acceleration at the passenger [m/s^2]", -30.0, 30.0),
-                ("T-foil command [rad]", -self.foil_limit, self.foil_limit),
-                ("T-foil travel over the last step [rate limit x step]", -1.0, 1.0),
-            ),
+            extra_observations=self.task_observations,
             **ship_kwargs(args),
         )
         self.vertical_rms_limit = limit_g * float(self.sim.hull.g)
@@ -202,11 +211,6 @@ class RideControlEnv(TaskEnv):
     ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
 
     {ship_observations}
-    | 14 | T-foil angle (servo) | rad | ±π/2 |
-    | 15 | earth-vertical acceleration at the passenger point (down positive) | m/s² | ±30 |
-    | 16 | T-foil command δ_c (the servo follows it at ≤ 20 °/s) | rad | ±0.262 |
-    | 17 | T-foil travel over the last control step Δδ/(δ̇_max Δt) | - | ±1 |
-    | 18… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     The accelerations at the passenger point use ν̇ from the backward difference of ν over the
     control step (:class:`ship_gym.comfort.metrics.PassengerComfort`).

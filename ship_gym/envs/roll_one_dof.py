@@ -20,6 +20,7 @@ from gymnasium import spaces
 from numpy.typing import NDArray
 
 from ship_gym.envs.base import BatchedTask, TaskEnv, TaskStep, TaskVectorEnv
+from ship_gym.envs.observations import Observation
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.validation import check_options, check_real, is_real
 from ship_gym.roll.equation import EDITH_TERKOL_NATURAL_FREQUENCY, RollEquation
@@ -212,13 +213,22 @@ class RollOneDOFTask(BatchedTask):
         #: roll-rate scale of the reward [rad/s]: ωₙ φ_c (the rate of a free roll of amplitude φ_c)
         self.roll_rate_scale = (wn if math.isfinite(wn) else 1.0) * self.capsize_angle
 
-        names = ["roll [rad]", "roll rate [rad/s]"]
-        high = [ROLL_BOUND, ROLL_RATE_BOUND]
+        entries = [
+            Observation("roll", "rad", -ROLL_BOUND, ROLL_BOUND, self.roll_noise_std,
+                        doc="roll φ", aliases=("roll angle", "phi")),
+            Observation("roll rate", "rad/s", -ROLL_RATE_BOUND, ROLL_RATE_BOUND,
+                        self.roll_rate_noise_std, doc="roll rate φ̇",
+                        aliases=("roll velocity", "p")),
+        ]  # fmt: skip
         if self.observe_forcing_phase:
-            names += ["sin(forcing phase) [-]", "cos(forcing phase) [-]"]
-            high += [1.0, 1.0]
-        self.observation_names = tuple(names)
-        h = np.array(high, dtype=np.float32)
+            entries += [
+                Observation("sin(forcing phase)", "-", -1.0, 1.0),
+                Observation("cos(forcing phase)", "-", -1.0, 1.0),
+            ]
+        self.observation_entries = tuple(entries)
+        """The observation table (:mod:`ship_gym.envs.observations`)."""
+        self.observation_names = tuple(e.label for e in entries)
+        h = np.array([e.high for e in entries], dtype=np.float32)
         self.observation_space = spaces.Box(-h, h, dtype=np.float32)
         self.action_space = spaces.Box(-1.0, 1.0, (1,), dtype=np.float32)
         self.action_names = (f"roll moment (-1..1 = ±{self.max_moment:g} rad/s^2)",)

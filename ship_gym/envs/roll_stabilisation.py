@@ -16,8 +16,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ship_gym.comfort.metrics import ComfortSample, PassengerComfort
+from ship_gym.comfort.metrics import ComfortSample
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
+from ship_gym.envs.comfort import ComfortTracker
 from ship_gym.envs.docstrings import (
     FORWARD_SPEED_V3,
     VERSION_HISTORY,
@@ -32,6 +33,7 @@ from ship_gym.envs.env_task import (
     point_scaled_from_s175,
     ship_kwargs,
 )
+from ship_gym.envs.observations import Observation
 from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.ship_task import StepStatistics
 from ship_gym.envs.validation import check_point, check_positive, check_weight
@@ -50,6 +52,7 @@ MAX_EPISODE_STEPS = max_episode_steps("RollStabilization")
 
 FIN_LIMIT_DEG = 25.0
 """Fin angle limit of the servo [deg] (:data:`ship_gym.control.actuators.FIN_SERVO`)."""
+_FIN_LIMIT = math.radians(FIN_LIMIT_DEG)
 S175_PASSENGER_POINT_M = (-50.0, 10.0, -15.0)
 """Default passenger position on the S175 [m] (aft, off the centreline, high in the
 superstructure); on another ship scaled by
@@ -96,18 +99,20 @@ class ComfortShipTask(ShipEnvTask):
             except ValueError:
                 raise ValueError(f"the setup has no servo-driven {model_name!r}") from None
             self.commands[key] = np.zeros(n)
-        self.comfort = PassengerComfort(
-            n,
-            self.control_dt,
-            passenger_point,
-            rms_time_constant=tau,
-            g=float(self.sim.hull.g),
+        self.comfort_tracker = ComfortTracker(
+            n, self.control_dt, passenger_point, tau, g=float(self.sim.hull.g)
         )
-        self.sample = self._zero_sample()
+        """The comfort component (:class:`ship_gym.envs.comfort.ComfortTracker`)."""
+        self.comfort = self.comfort_tracker.meter
 
-    def _zero_sample(self) -> ComfortSample:
-        z = np.zeros(self.num_envs)
-        return ComfortSample(z, z, z, z, z, z)
+    @property
+    def sample(self) -> ComfortSample:
+        """The last control step's comfort sample (:attr:`ComfortTracker.sample`)."""
+        return self.comfort_tracker.sample
+
+    @sample.setter
+    def sample(self, value: ComfortSample) -> None:
+        self.comfort_tracker.sample = value
 
     def actuator_angles(self) -> NDArray:
         """(N, n_actuators) servo angles of the commanded surfaces [rad]."""
@@ -122,15 +127,12 @@ class ComfortShipTask(ShipEnvTask):
             self.commands[key][i] = 0.0
         nu = np.zeros(6)
         nu[0] = self.initial_speed[i]  # ShipTask resets ν = (U_i, 0, …)
-        self.comfort.reset([i], nu)
-        z = self.sample
-        for arr in (z.lateral, z.vertical, z.weighted_vertical, z.lateral_rms, z.vertical_rms):
-            arr[i] = 0.0
+        self.comfort_tracker.reset([i], nu)
         return {}
 
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
-        self.sample = self.comfort.update(self.sim.eta, self.sim.nu)
-        return self._comfort_reward_terms(stats, self.sample)
+        sample = self.comfort_tracker.update(self.sim.eta, self.sim.nu)
+        return self._comfort_reward_terms(stats, sample)
 
     def _comfort_reward_terms(
         self, stats: StepStatistics, sample: ComfortSample
@@ -138,15 +140,7 @@ class ComfortShipTask(ShipEnvTask):
         raise NotImplementedError
 
     def _comfort_info(self) -> dict[str, NDArray]:
-        s = self.sample
-        return {
-            "lateral_acceleration_mps2": s.lateral.copy(),
-            "vertical_acceleration_mps2": s.vertical.copy(),
-            "lateral_acceleration_rms_mps2": s.lateral_rms.copy(),
-            "vertical_acceleration_rms_mps2": s.vertical_rms.copy(),
-            "msdv_z": s.msdv.copy(),
-            "msi_percent": s.msdv / 3.0,
-        }
+        return self.comfort_tracker.info()
 
     def _action_labels(self, i: int) -> dict[str, float]:
         out = super()._action_labels(i)
@@ -158,6 +152,18 @@ class ComfortShipTask(ShipEnvTask):
 
 class RollStabilizationTask(ComfortShipTask):
     """N roll-stabilisation episodes (see :class:`RollStabilizationEnv` for the arguments)."""
+
+    task_observations = (
+        Observation("fin angle", "rad", -math.pi / 2, math.pi / 2, doc="fin angle (servo)",
+                    bound="±π/2"),
+        Observation("lateral specific force at the passenger", "m/s^2", -30.0, 30.0,
+                    doc="lateral specific force f_y at the passenger point"),
+        Observation("fin command", "rad", -_FIN_LIMIT, _FIN_LIMIT,
+                    doc="fin command δ_c (the servo follows it at ≤ 15 °/s)"),
+        Observation("fin travel over the last step", "rate limit x step", -1.0, 1.0,
+                    doc="fin travel over the last control step Δδ/(δ̇_max Δt)"),
+    )  # fmt: skip
+    """The task's observation entries (written by :meth:`_write_extra_observations`)."""
 
     def __init__(
         self,
@@ -238,12 +244,7 @@ class RollStabilizationTask(ComfortShipTask):
             rudder="command" if rudder_roll_stabilization else "autopilot",
             setup_changes={"fins": "command"},
             sea=irregular_sea(args),
-            extra_observations=(
-                ("fin angle [rad]", -math.pi / 2, math.pi / 2),
-                ("lateral specific force at the passenger [m/s^2]", -30.0, 30.0),
-                ("fin command [rad]", -fin_limit, fin_limit),
-                ("fin travel over the last step [rate limit x step]", -1.0, 1.0),
-            ),
+            extra_observations=self.task_observations,
             **ship_kwargs(args),
         )
         self.fin_limit = fin_limit
@@ -344,11 +345,6 @@ class RollStabilizationEnv(TaskEnv):
     ``Box(float32)``; entries (``env.observation_names``), each clipped to its bound:
 
     {ship_observations}
-    | 14 | fin angle (servo) | rad | ±π/2 |
-    | 15 | lateral specific force f_y at the passenger point | m/s² | ±30 |
-    | 16 | fin command δ_c (the servo follows it at ≤ 15 °/s) | rad | ±0.436 |
-    | 17 | fin travel over the last control step Δδ/(δ̇_max Δt) | - | ±1 |
-    | 18… | incident elevation at the ``wave_preview_m`` points (if any) | m | ±30 |
 
     The accelerations at the passenger point use ν̇ from the backward difference of ν over the
     control step (:class:`ship_gym.comfort.metrics.PassengerComfort`).

@@ -34,10 +34,12 @@ Python loop in :meth:`ShipTask.step`):
   constraint of every ship task is |φ| ≤ the dangerous roll angle (the fraction of the physics
   steps above it); a task may add its own (RideControl: the running RMS vertical acceleration
   at the passenger point below its limit);
-* **observations** — float32, names with units (:attr:`ShipTask.observation_names`), clipped to
-  the documented bounds of the space, optional Gaussian sensor noise (from the episode's
-  generator) and optional wave preview (incident elevation at points ahead of O along the
-  heading, or at any horizontal points of the body frame, from the wave field);
+* **observations** — one table (:mod:`ship_gym.envs.observations`,
+  :attr:`ShipTask.observation_entries`: name, unit, bounds, noise, getter per entry) gives the
+  float32 values, the names with units (:attr:`ShipTask.observation_names`), clipped to the
+  bounds of the space, optional Gaussian sensor noise (from the episode's generator) and
+  optional wave preview (incident elevation at points ahead of O along the heading, or at any
+  horizontal points of the body frame, from the wave field);
 * **rendering** — :meth:`ShipTask.snapshot` (profile/section elevations from the wave field and a
   ring buffer of roll, pitch, heave and heading).
 
@@ -61,7 +63,7 @@ import abc
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numba
 import numpy as np
@@ -71,7 +73,25 @@ from numpy.typing import NDArray
 from ship_gym.conventions import wrap_angle
 from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import BatchedTask, TaskStep
+from ship_gym.envs.config import (
+    DANGEROUS_ROLL_LIMITS,
+    GM_LIMITS,
+    SENSOR_NOISE_LIMITS,
+    SPEED_LIMITS,
+)
+from ship_gym.envs.episodes import EpisodeSampler
 from ship_gym.envs.loading import loading_condition
+from ship_gym.envs.observations import (
+    SENSOR_NOISE_STD as _SENSOR_NOISE_STD,
+)
+from ship_gym.envs.observations import (
+    SHIP_OBSERVATIONS,
+    Observation,
+    observation_from_tuple,
+    preview_observation,
+    state_layout,
+    write_state_columns,
+)
 from ship_gym.envs.prototypes import designed_propeller, prototype_simulator
 from ship_gym.envs.seas import SeaSampler
 from ship_gym.envs.validation import (
@@ -95,49 +115,15 @@ MAX_SUBSTEPS = 1000
 commands are held over a control step, and a longer one is no longer closed-loop control (and
 one ``step()`` would run for minutes)."""
 
-SPEED_LIMITS = (0.1, 30.0)
-"""Accepted initial speeds [m/s] (``speed_range_mps``, ``reset(options={"initial_speed_mps"})``)."""
-
-GM_LIMITS = (0.05, 10.0)
-"""Accepted GM of an episode's loading [m] (``gm_range_m``, ``reset(options={"gm_m"})``)."""
+# SPEED_LIMITS, GM_LIMITS: the accepted initial speeds [m/s] and GM [m], from ShipConfig
 
 
-# =============================================================================================
-# sensor noise and observation bounds
-# =============================================================================================
-SENSOR_NOISE_STD: dict[str, float] = {
-    "roll [rad]": math.radians(0.2),
-    "pitch [rad]": math.radians(0.2),
-    "heave [m]": 0.05,
-    "roll rate [rad/s]": math.radians(0.1),
-    "pitch rate [rad/s]": math.radians(0.1),
-    "heave velocity [m/s]": 0.02,
-    "yaw rate [rad/s]": math.radians(0.05),
-    "surge speed [m/s]": 0.05,
-    "sway velocity [m/s]": 0.05,
-    "heading error [rad]": math.radians(0.5),
-}
-"""Standard deviation of each sensor at ``sensor_noise=1`` (typical marine motion reference
-unit, gyro compass and log accuracy); unlisted entries (commands, actuator feedback, wave
-direction, preview) are noise-free except the preview, which takes 0.1 m."""
-
-_PREVIEW_NOISE_STD = 0.1  # [m] wave-radar elevation accuracy at sensor_noise = 1
-
-_BASE_OBSERVATIONS: tuple[tuple[str, float], ...] = (
-    # name, bound (symmetric) — every entry is clipped to ±bound
-    ("roll [rad]", math.pi),
-    ("pitch [rad]", math.pi / 2),
-    ("heave [m]", 30.0),
-    ("roll rate [rad/s]", 5.0),
-    ("pitch rate [rad/s]", 5.0),
-    ("heave velocity [m/s]", 30.0),
-    ("yaw rate [rad/s]", 2.0),
-    ("surge speed [m/s]", 30.0),
-    ("sway velocity [m/s]", 30.0),
-    ("heading error [rad]", math.pi),
-    ("relative wave heading cos [-]", 1.0),
-    ("relative wave heading sin [-]", 1.0),
-)
+# the observation table (ship_gym.envs.observations): names, units, bounds, noise, getters
+SENSOR_NOISE_STD = _SENSOR_NOISE_STD
+"""Standard deviation of each sensor at ``sensor_noise=1`` by observation name (typical marine
+motion reference unit, gyro compass and log accuracy; from
+:data:`~ship_gym.envs.observations.SHIP_OBSERVATIONS`); unlisted entries (commands, actuator
+feedback, wave direction, preview) are noise-free except the preview, which takes 0.1 m."""
 
 
 @dataclass
@@ -176,7 +162,6 @@ class StepStatistics:
 # they replace, operation for operation (the same bits, tests/envs/test_step_equivalence.py);
 # sines and cosines stay NumPy calls, whose implementation may differ from numba's
 # =============================================================================================
-_EMPTY = np.zeros(0)
 _RAD2DEG = 180.0 / math.pi  # np.degrees multiplies by this
 
 
@@ -211,33 +196,6 @@ def _step_kernel(
         heading_error[i] = wrap_angle_scalar(heading_setpoint[i] - eta[i, 5])
         roll_deg[i] = eta[i, 3] * _RAD2DEG
         max_roll_deg[i] = max_abs[i] * _RAD2DEG
-
-
-@numba.njit(cache=True, nogil=True)
-def _base_observations_kernel(
-    eta, nu, z_eq, heading_error, cos_beta, sin_beta, rudder, shaft, out
-):  # pragma: no cover - compiled
-    """Columns 0–13 of the clean observations (``_BASE_OBSERVATIONS``, the rudder angle if
-    ``rudder`` is not empty, the shaft speed if ``shaft`` is not empty) into ``out``."""
-    for i in range(eta.shape[0]):
-        out[i, 0] = eta[i, 3]
-        out[i, 1] = eta[i, 4]
-        out[i, 2] = eta[i, 2] - z_eq
-        out[i, 3] = nu[i, 3]
-        out[i, 4] = nu[i, 4]
-        out[i, 5] = nu[i, 2]
-        out[i, 6] = nu[i, 5]
-        out[i, 7] = nu[i, 0]
-        out[i, 8] = nu[i, 1]
-        out[i, 9] = heading_error[i]
-        out[i, 10] = cos_beta[i]
-        out[i, 11] = sin_beta[i]
-        j = 12
-        if rudder.shape[0] > 0:
-            out[i, j] = rudder[i]
-            j += 1
-        if shaft.shape[0] > 0:
-            out[i, j] = shaft[i]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -353,8 +311,12 @@ class ShipTask(BatchedTask, abc.ABC):
         abeam and up-wave in beam seas (empty: no preview).
     history_length : int
         Samples of the rendering history (one per control step).
-    extra_observations : sequence of (name, low, high)
-        The subclass's observation entries (appended after the common ones).
+    extra_observations : sequence of Observation or of (name, low, high)
+        The subclass's observation entries (appended after the common ones of
+        :data:`~ship_gym.envs.observations.SHIP_OBSERVATIONS`): an
+        :class:`~ship_gym.envs.observations.Observation` with a getter (a function of the task
+        returning the (N,) values), or without one, or a ``("name [unit]", low, high)`` tuple,
+        written by :meth:`_write_extra_observations`.
     capsize_penalty : float
         Reward ``capsize`` = −capsize_penalty in the control step the ship capsizes [-], the last
         of the reward terms (after the subclass's :meth:`_reward_terms`).
@@ -365,6 +327,10 @@ class ShipTask(BatchedTask, abc.ABC):
     num_threads: int = 1
     """numba threads over the ships in the compiled loop (set by :class:`ShipEnvTask`)."""
     observations_bounded = True  # observations() is a float32 copy, clipped to the bounds
+    task_observations: ClassVar[tuple[Observation, ...]] = ()
+    """The task's own observation entries, after the common ones (a subclass passes them as
+    ``extra_observations``; :func:`~ship_gym.envs.docstrings.env_docstring` writes their rows
+    of the environment's observation table from them)."""
 
     def __init__(
         self,
@@ -380,7 +346,7 @@ class ShipTask(BatchedTask, abc.ABC):
         sensor_noise: float = 0.0,
         wave_preview_m: Sequence[float] | Sequence[Sequence[float]] = (),
         history_length: int = 240,
-        extra_observations: Sequence[tuple[str, float, float]] = (),
+        extra_observations: Sequence[tuple[str, float, float] | Observation] = (),
         capsize_penalty: float = 0.0,
     ) -> None:
         super().__init__(num_envs)
@@ -413,44 +379,34 @@ class ShipTask(BatchedTask, abc.ABC):
         # --- options
         lc = loading_condition(setup)
         self.loading = lc
-        if speed_range is not None:
-            speed_range = check_range(
-                "speed_range_mps",
-                speed_range,
-                low=SPEED_LIMITS[0],
-                high=SPEED_LIMITS[1],
-                unit="m/s",
-            )
-            if not setup.propulsion:
-                raise ValueError("speed_range_mps needs a setup with propulsion (a shaft speed)")
-        self.speed_range = speed_range
-        if gm_range is not None:
-            gm_range = check_range(
-                "gm_range_m", gm_range, low=GM_LIMITS[0], high=GM_LIMITS[1], unit="m"
-            )
-        self.gm_range = gm_range
-        if capsize_angle_deg is not None:
-            capsize_angle_deg = check_real(
-                "capsize_angle_deg",
-                capsize_angle_deg,
-                low=0.0,
-                high=180.0,
-                unit="deg",
-                low_open=True,
-                why=" or None",
-            )
-        self.capsize_angle_deg = capsize_angle_deg
+        if speed_range is not None and not setup.propulsion:
+            low, high = SPEED_LIMITS
+            check_range("speed_range_mps", speed_range, low=low, high=high, unit="m/s")
+            raise ValueError("speed_range_mps needs a setup with propulsion (a shaft speed)")
+        self.episodes = EpisodeSampler(
+            sea,
+            lc,
+            float(setup.speed),
+            speed_range=speed_range,
+            gm_range=gm_range,
+            capsize_angle_deg=capsize_angle_deg,
+        )
+        """The episode sampler: sea, speed, loading (GM) and capsize angle of each episode."""
+        self.speed_range = self.episodes.speed_range
+        self.gm_range = self.episodes.gm_range
+        self.capsize_angle_deg = self.episodes.capsize_angle_deg
         dangerous_roll_deg = check_real(
             "dangerous_roll_deg",
             dangerous_roll_deg,
-            low=0.0,
-            high=90.0,
+            low=DANGEROUS_ROLL_LIMITS[0],
+            high=DANGEROUS_ROLL_LIMITS[1],
             unit="deg",
             low_open=True,
             high_open=True,
         )
         self.dangerous_roll = math.radians(dangerous_roll_deg)
-        self.sensor_noise = check_real("sensor_noise", sensor_noise, low=0.0, high=100.0, unit="-")
+        low, high = SENSOR_NOISE_LIMITS
+        self.sensor_noise = check_real("sensor_noise", sensor_noise, low=low, high=high, unit="-")
         try:
             if isinstance(wave_preview_m, str | bytes):
                 raise TypeError
@@ -501,44 +457,31 @@ class ShipTask(BatchedTask, abc.ABC):
             self.commands["rudder_command"] = np.zeros(n)
         if setup.rudder == "autopilot":
             self.commands["heading"] = np.zeros(n)
-        # --- observation layout
-        names = [name for name, _ in _BASE_OBSERVATIONS]
-        bounds = [b for _, b in _BASE_OBSERVATIONS]
-        low = [-b for b in bounds]
-        if self._rudder is not None:
-            names.append("rudder angle [rad]")
-            low.append(-math.pi / 2)
-            bounds.append(math.pi / 2)
-        if setup.propulsion:
-            names.append("shaft speed [rev/s]")
-            low.append(-20.0)
-            bounds.append(20.0)
-        self._n_base = len(names)
-        self._n_extra = len(extra_observations)
-        for name, lo, hi in extra_observations:
-            names.append(name)
-            low.append(float(lo))
-            bounds.append(float(hi))
-        for x, y in self._preview_xy:
-            names.append(
-                f"wave elevation {x:g} m ahead [m]"
-                if ahead
-                else f"wave elevation at body point ({x:g}, {y:g}) m [m]"
-            )
-            low.append(-30.0)
-            bounds.append(30.0)
-        self.observation_names = tuple(names)
-        self._obs_low = np.asarray(low, dtype=np.float32)
-        self._obs_high = np.asarray(bounds, dtype=np.float32)
+        # --- observation layout: the table's common entries, the task's, the preview
+        present = {"": True, "rudder": self._rudder is not None, "propulsion": setup.propulsion}
+        common = [e for e in SHIP_OBSERVATIONS if present[e.requires]]
+        extra = [observation_from_tuple(e) for e in extra_observations]
+        preview_entries = [preview_observation(x, y, ahead) for x, y in self._preview_xy]
+        entries = (*common, *extra, *preview_entries)
+        self.observation_entries: tuple[Observation, ...] = entries
+        """The observation table of the task: one :class:`Observation` per entry, in order."""
+        self.observation_names = tuple(e.label for e in entries)
+        names = self.observation_names
+        self._n_base = len(common)
+        self._n_extra = len(extra)
+        self._state_layout = state_layout(common)
+        self._extra_getters = tuple(
+            (j, e.getter) for j, e in enumerate(extra) if callable(e.getter)
+        )
+        self._signals = np.zeros((n, 5))  # ship_gym.envs.observations.SIGNALS
+        self._obs_low = np.asarray([e.low for e in entries], dtype=np.float32)
+        self._obs_high = np.asarray([e.high for e in entries], dtype=np.float32)
         self.observation_space = spaces.Box(self._obs_low, self._obs_high, dtype=np.float32)
-        noise = [SENSOR_NOISE_STD.get(name, 0.0) for name in names]
-        k = len(self._preview_xy)
-        noise[len(names) - k :] = [_PREVIEW_NOISE_STD] * k
-        self._noise_std = self.sensor_noise * np.asarray(noise)
+        self._noise_std = self.sensor_noise * np.asarray([e.noise_std for e in entries])
         # --- per-episode state
         self.heading_setpoint = np.zeros(n)  # ψ_ref [rad]
         self.wave_direction = np.zeros(n)  # mean χ of the episode's sea [rad]
-        self.capsize_angle = np.full(n, math.radians(capsize_angle_deg or lc.vanishing_angle_deg))
+        self.capsize_angle = np.full(n, self.episodes.nominal_capsize_angle)
         self.initial_speed = np.full(n, float(setup.speed))
         self.initial_roll = np.zeros(n)
         """Roll angle [rad] and rate [rad/s] each ship started its episode with."""
@@ -661,31 +604,9 @@ class ShipTask(BatchedTask, abc.ABC):
         if ids.size == 0:
             return
         opts = self._check_reset_options(options)
-        sea_opts = self.sea.check_options(opts)
-        lc = self.loading
-        fields = []
-        infos = []
-        speeds = np.empty(ids.size)
-        gms = np.empty(ids.size)
-        for k, rng in enumerate(rngs):
-            wave_field, info = self.sea.sample(rng, sea_opts)
-            fields.append(wave_field)
-            infos.append(info)
-            # the draws always happen, so an option does not shift the random stream
-            speeds[k] = (
-                float(rng.uniform(*self.speed_range)) if self.speed_range else self.setup.speed
-            )
-            gms[k] = float(rng.uniform(*self.gm_range)) if self.gm_range else lc.gm
-        if "initial_speed_mps" in opts:
-            speeds[:] = opts["initial_speed_mps"]
-        if "gm_m" in opts:
-            gms[:] = opts["gm_m"]
-        # loading: G raised by ΔKG = GM_nominal − GM
-        delta_kg = lc.gm - gms
-        if self.capsize_angle_deg is None:
-            capsize_angles = lc.vanishing_angles(delta_kg)
-        else:
-            capsize_angles = np.full(ids.size, math.radians(self.capsize_angle_deg))
+        drawn = self.episodes.draw(rngs, opts)
+        fields, infos, speeds = drawn.wave_fields, drawn.infos, drawn.speed
+        gms, delta_kg, capsize_angles = drawn.gm, drawn.delta_kg, drawn.capsize_angle
         if "roll_deg" in opts and np.any(abs(math.radians(opts["roll_deg"])) >= capsize_angles):
             raise ValueError(
                 f"options['roll_deg'] = {opts['roll_deg']!r} deg must be inside the capsize angle "
@@ -883,15 +804,21 @@ class ShipTask(BatchedTask, abc.ABC):
         beta = self.wave_direction - eta[:, 5]
         if heading_error is None:
             heading_error = self.heading_error()
-        rudder = self._rudder.angle if self._rudder is not None else _EMPTY
-        shaft = self.commands.get("shaft_speed", _EMPTY)
-        _base_observations_kernel(
-            eta, sim.nu, self._z_eq, heading_error, np.cos(beta), np.sin(beta), rudder, shaft, out
-        )
+        signals = self._signals
+        signals[:, 0] = heading_error
+        signals[:, 1] = np.cos(beta)
+        signals[:, 2] = np.sin(beta)
+        if self._rudder is not None:
+            signals[:, 3] = self._rudder.angle
+        if "shaft_speed" in self.commands:
+            signals[:, 4] = self.commands["shaft_speed"]
+        write_state_columns(eta, sim.nu, signals, self._z_eq, *self._state_layout, out)
         if self._custom_extra:
             self._obs_extra[:] = self._extra_observations()
         elif self._n_extra:
             self._write_extra_observations(self._obs_extra)
+            for j, getter in self._extra_getters:
+                self._obs_extra[:, j] = getter(self)
         if len(self._preview_xy):
             self._obs_preview[:] = self._preview()
         return out

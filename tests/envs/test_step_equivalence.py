@@ -1,7 +1,7 @@
 """The compiled per-step bookkeeping of the ship tasks is the NumPy code it replaced, bit for bit.
 
 ``ShipTask.step`` fills its observations, statistics, history and comfort sample with small
-numba kernels (``ship_task._step_kernel``, ``_base_observations_kernel``,
+numba kernels (``ship_task._step_kernel``, ``observations.write_state_columns``,
 ``_finish_observations_kernel``, ``_history_kernel``, ``comfort._comfort_kernel``…). The
 reference here is the NumPy implementation they replaced (the reference tasks below: the former
 ``ShipTask.step``, observation and history code and the tasks' former hooks), run on the same
