@@ -277,10 +277,9 @@ def _row(label: str, metrics: dict, task: BenchmarkTask, training: dict | None) 
     episodes = metrics.get("per_episode")
     if episodes is not None:
         key = _PER_EPISODE_METRIC.get(task.metric, task.metric)
-        row["per_episode"] = {
-            "metric": [float(x) for x in episodes[key]],
-            "effort": [float(x) for x in episodes["rms_action"]],
-            "return": [float(x) for x in episodes["returns"]],
+        row["per_episode"] = {  # 7 significant digits: what the intervals need
+            name: [float(f"{float(x):.7g}") for x in episodes[field]]
+            for name, field in (("metric", key), ("effort", "rms_action"), ("return", "returns"))
         }
     if training is not None:
         row.update(training)

@@ -4,7 +4,6 @@ seeds, the table, curves and shipped policies; resume; refused arguments."""
 from __future__ import annotations
 
 import json
-import tomllib
 
 import pytest
 
@@ -204,7 +203,8 @@ def _shipped_policies():
     from pathlib import Path
 
     root = Path(__file__).parents[2] / "docs" / "benchmarks"
-    results = json.loads((root / "results.json").read_text()) if root.is_dir() else {"tasks": {}}
+    path = root / "results.json"
+    results = json.loads(path.read_text()) if path.is_file() else {"tasks": {}}
     params, seen = [], set()
     for name, task in results["tasks"].items():
         for folder in sorted((root / "policies" / name).glob("*")):
@@ -264,3 +264,43 @@ def test_a_damaged_run_summary_is_named_and_its_run_is_not_reused(tmp_path, cont
         read_summary(run)
     config = config_from_mapping({"env": {"id": "ship_gym/RollOneDOF-v0"}})
     assert _run_is_complete(run, config) is False
+
+
+def test_a_learned_row_is_judged_on_the_paired_interval_of_its_gain_and_effort():
+    import numpy as np
+
+    from ship_gym.agents.benchmark import _verdict
+
+    rng = np.random.default_rng(0)
+    seas = rng.lognormal(0.0, 0.5, size=200)
+
+    def row(policy: str, scale: float, effort: float, **extra) -> dict:
+        metric = seas * scale * (1 + 0.01 * rng.normal(size=200))
+        return {"policy": policy, "metric": float(metric.mean()), "effort": effort,
+                "capsized": 0, "episodes": 200, "capsize_ci95": [0.0, 0.02],
+                "mean_return": -float(metric.mean()), "mean_cost": 0.0,
+                "per_episode": {"metric": metric.tolist(), "effort": [effort] * 200,
+                                "return": (-metric).tolist()}, **extra}  # fmt: skip
+
+    rows = [
+        row("zero", 2.0, 0.0),
+        row("fins", 1.0, 0.3),
+        row("clear win", 0.7, 0.3, config="a"),  # 30 % ± ~0.1 %: met
+        row("near the target", 0.8, 0.29, config="b"),  # 20 % ± noise: undecided
+        row("too little", 0.9, 0.2, config="c"),  # 10 %: not met
+        row("more effort", 0.7, 0.33, config="d"),  # 30 % at 1.1× the effort
+    ]
+    result = _verdict(TASKS["RollStabilization"], rows)
+    verdicts = {r["policy"]: r["verdict"] for r in result["rows"] if "config" in r}
+    assert verdicts == {
+        "clear win": "met",
+        "near the target": "undecided",
+        "too little": "not met",
+        "more effort": "not met (more effort)",
+    }
+    win = result["rows"][2]
+    low, high = win["gain_ci95"]
+    assert low < win["gain_vs_strongest"] < high and high - low < 0.01  # paired: narrow
+    assert win["effort_ratio"] == pytest.approx(1.0) and win["target"] is True
+    assert result["headroom"]["baseline_vs_zero"][0] == pytest.approx(0.5, abs=0.01)
+    assert result["headroom"]["learned_best"]["policy"] == "clear win"
