@@ -205,7 +205,8 @@ def _check(design: Design, out: Path, seeds: list[int]) -> int:
     path = out / f"{design.stem}.json"
     report = json.loads(path.read_text(encoding="utf-8"))
     env = gymnasium.make(design.env_id)
-    setup = env.unwrapped.task.setup
+    unwrapped: Any = env.unwrapped
+    setup = unwrapped.task.setup
     env.close()
     results: dict[str, Any] = {}
     for label, point in (("chosen", report["chosen"]), ("former", report["former"])):
@@ -257,7 +258,8 @@ def main() -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     env = gymnasium.make(design.env_id)
-    setup = env.unwrapped.task.setup  # the ship, loading and speed of the default episodes
+    unwrapped: Any = env.unwrapped
+    setup = unwrapped.task.setup  # the ship, loading and speed of the default episodes
     env.close()
 
     def evaluate(point: dict) -> dict[str, Any]:
