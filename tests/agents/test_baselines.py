@@ -203,7 +203,9 @@ def _master(**gains):
 def test_master_zones_are_those_of_the_guidance():
     """MSC.1/Circ.1228 §4.2 by hand, L = 175 m (1.8 √L kn = 12.25 m/s), T_W = 13 s (c = 20.30
     m/s, λ/L = 1.507), H/L = 0.06; weights 1 each, no margin, no beam zone."""
-    master, env = _master(zone_margin=0.0, beam_limit_deg=90.0, zone_weights=(1, 1, 1, 1, 1))
+    master, env = _master(
+        resonance_band=0.2, zone_margin=0.0, beam_limit_deg=90.0, zone_weights=(1, 1, 1, 1, 1)
+    )
     env.close()
 
     def zones(u, beta_deg, t_r):
@@ -226,7 +228,7 @@ def test_master_zones_are_those_of_the_guidance():
     # … and T_R = 10.4 s → synchronous
     assert zones(5.0, 180.0, 10.4) == 1.0
     # beam zone (beam_limit 20°): steep waves 30° off the stern count, 10° do not
-    master_beam, env = _master(beam_limit_deg=20.0, zone_weights=(0, 0, 0, 0, 1))
+    master_beam, env = _master(beam_limit_deg=20.0, zone_weights=(0, 0, 0, 0, 1))  # band irrelevant
     env.close()
     beta = np.radians([10.0, 30.0, 150.0, 170.0])  # 170°, 150° are 10°, 30° off the bow
     n = beta.size
@@ -239,8 +241,9 @@ def test_master_zones_are_those_of_the_guidance():
 
 def test_master_slows_down_out_of_the_surf_riding_zone():
     """Dead following steep seas at Fn 0.33 (13.6 m/s > 12.25): the master's plan is safe and
-    slower; zero action keeps the telegraph."""
-    master, env = _master()
+    slower; zero action keeps the telegraph. With the zone margin of 0.2 (the tuned master has
+    none and may plan at the limit itself, within the noise of its speed estimate)."""
+    master, env = _master(zone_margin=0.2)
     names = env.unwrapped.observation_names
     obs, _ = env.reset(seed=0, options={"wave_heading_deg": 0.0, "initial_speed_mps": 13.6,
                                          "wave_height_m": 10.5, "wave_period_s": 13.0})  # fmt: skip
