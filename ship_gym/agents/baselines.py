@@ -887,13 +887,13 @@ BASELINES: Mapping[str, type[Baseline]] = {
 DEFAULT_GAINS: Mapping[tuple[str, str], Mapping[str, float]] = {
     ("fins", "RollOneDOF"): {"k_roll": 2.0, "k_rate": 20.0},
     # scripts/tune_baseline.py RollStabilization (docs/benchmarks/RollStabilization_baseline.json):
-    # fin_stabiliser at ζ_add 0.8, c_add 0.5
-    ("fins", "RollStabilization"): {"k_roll": 5.4, "k_rate": 48.8},
+    # fin_stabiliser at ζ_add 1.5, c_add 0.8 (issue #31; was ζ_add 0.8, c_add 0.5 on the edge)
+    ("fins", "RollStabilization"): {"k_roll": 8.664, "k_rate": 91.50},
     # scripts/tune_baseline.py CourseKeeping (docs/benchmarks/CourseKeeping_baseline.json):
-    # heading_autopilot at ω_n 0.06 rad/s, ζ 0.7
-    ("pid", "CourseKeeping"): {"k_p": 1.479, "k_d": 25.98, "k_i": 0.00887},
+    # heading_autopilot at ω_n 0.08 rad/s, ζ 0.2 (issue #31; was ω_n 0.06, ζ 0.7 on the edge)
+    ("pid", "CourseKeeping"): {"k_p": 2.629, "k_d": 4.619, "k_i": 0.02103},
     # scripts/tune_baseline.py RideControl (docs/benchmarks/RideControl_baseline.json):
-    # ride_controller at ζ_3 0, ζ_5 0.02
+    # ride_controller at ζ_3 0 (its lower bound), ζ_5 0.02 (inside the grid; unchanged in #31)
     ("ride", "RideControl"): {"k_heave": 0.0, "k_pitch": 34.69},
     # scripts/tune_heavy_weather_masters.py (docs/benchmarks/heavy_weather_masters.json):
     # coordinate search on training seeds 1000-1059, one pass (mean return 313 vs 259 kept on
@@ -905,6 +905,13 @@ DEFAULT_GAINS: Mapping[tuple[str, str], Mapping[str, float]] = {
         "zone_margin": 0.0,
         "resonance_band": 0.1,
         "beam_limit_deg": 45.0,
+    },
+    # scripts/tune_baseline.py CapsizeAvoidance (docs/benchmarks/capsize_master.json): the class
+    # defaults were chosen on a grid whose optimum lay on its edge (issue #31)
+    ("imo-guidance", "CapsizeAvoidance"): {
+        "resonance_band": 0.4,
+        "zone_margin": 0.0,
+        "beam_limit_deg": 25.0,
     },
 }
 """Per-env default gains: (baseline name, env name without namespace/version) → gains."""

@@ -94,6 +94,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=_cmd_evaluate)
 
     from ship_gym.agents.benchmark import TASKS
+    from ship_gym.agents.protocol import HELD_OUT_EPISODES, HELD_OUT_FIRST
 
     p = sub.add_parser(
         "benchmark",
@@ -116,10 +117,21 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
         "--episodes",
         type=count,
         default=None,
-        help="held-out episodes per policy (default: the published table's, 40; 60 for "
-        "CapsizeAvoidance)",
+        help=f"held-out episodes per policy (default: the published table's, {HELD_OUT_EPISODES})",
     )
-    p.add_argument("--seed", type=seed, default=10_000, help="first held-out seed")
+    p.add_argument(
+        "--seed",
+        type=seed,
+        default=HELD_OUT_FIRST,
+        help=f"first held-out seed (default {HELD_OUT_FIRST}; lower seeds were used to train or "
+        "to choose and are refused)",
+    )
+    p.add_argument(
+        "--shipped",
+        action="store_true",
+        help="evaluate the shipped policies in --out/policies instead of training (how the "
+        "published table is made)",
+    )
     p.add_argument(
         "--configs",
         default=None,
@@ -164,6 +176,7 @@ def _cmd_benchmark(args: argparse.Namespace) -> int:
             episodes=args.episodes,
             seed=args.seed,
             configs=configs,
+            shipped=args.shipped,
             progress=not args.no_progress,
         )
     except ValueError as exc:

@@ -356,7 +356,8 @@ CASES: list[tuple[str, int, list[str]]] = [
     ("benchmark --tasks Sailing", R, ["--tasks", "Sailing", "expected comma-separated"]),
     ("benchmark --tasks ,", R, ["--tasks", "empty"]),
     ("benchmark --seeds 0", U, ["--seeds", "0"]),
-    ("benchmark --tasks RollOneDOF --seed 5", R, ["--seed 5", "overlaps the training seeds"]),
+    ("benchmark --tasks RollOneDOF --seed 5", R, ["--seed 5", "start in the training range"]),
+    ("benchmark --tasks RollOneDOF --seed 10000", R, ["--seed 10000", "burnt range"]),
     ("benchmark --out {file}", R, ["--out"]),
     (
         "benchmark --tasks RollOneDOF --configs sac_ride_control",
