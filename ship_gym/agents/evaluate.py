@@ -340,6 +340,10 @@ def summarize(stats: EpisodeStats) -> dict[str, float]:
         "voyage_progress": (
             math.nan if stats.voyage_progress is None else mean(stats.voyage_progress)
         ),
+        # HeavyWeather's metric as a shortfall (lower is better, as the benchmark's metrics)
+        "voyage_shortfall": (
+            math.nan if stats.voyage_progress is None else 1.0 - mean(stats.voyage_progress)
+        ),
     }
 
 
@@ -507,6 +511,10 @@ def evaluate_policies(
         metrics["per_episode"] = {
             k: np.asarray(v).tolist() for k, v in asdict(stats).items() if k != "seeds"
         }
+        if stats.voyage_progress is not None and "voyage_progress" in metrics["per_episode"]:
+            metrics["per_episode"]["voyage_shortfall"] = (
+                1.0 - np.asarray(stats.voyage_progress, float)
+            ).tolist()
         out["policies"][label] = metrics
     return out
 
