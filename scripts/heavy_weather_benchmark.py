@@ -74,6 +74,8 @@ def table(results: dict[str, Any]) -> dict[str, Any]:
             "rms_action": float(np.mean(per["rms_action"])),
         }
     masters = [m for m in MASTERS if m in rows]
+    if not masters:
+        raise ValueError("no classical master in the results: run them too (--policies)")
     safest = min(rows[m]["capsize_rate"][2] for m in masters)
     eligible = [m for m in masters if rows[m]["capsize_rate"][2] <= safest + 1e-12]
     strongest = max(eligible, key=lambda m: rows[m]["progress"][0])
@@ -160,6 +162,8 @@ def main() -> None:
     )
     path = args.out / "heavy_weather.json"
     results = evaluate_policies(ENV_ID, policies, args.episodes, args.seed, report=print)
+    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / "heavy_weather_last_run.json").write_text(json.dumps(results) + "\n")
     if path.exists():  # keep the other policies' episodes of the same seeds
         earlier = json.loads(path.read_text())
         if earlier.get("seeds") == [seeds[0], seeds[-1]]:
