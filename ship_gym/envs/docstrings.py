@@ -53,6 +53,8 @@ SHIP_ARGUMENTS: dict[str, tuple[str, str]] = {
     "integrator": ("-", '"holloway" (1 force evaluation/step) or "rk4" (4)'),
     "hull_mesh": ("-", "offsets-hull mesh (sections, panels below/above water, deck)"),
     "precision": ("-", '"float32" or "float64" wave sums of the Froude–Krylov kernel'),
+    "wind_speed_mps": ("m/s", "constant mean wind speed on the ship's windage (0: none)"),
+    "wind_from_deg": ("deg", "earth direction the wind blows from (0: north, ahead at the start)"),
     "forward_speed_model": (
         "-",
         '"relative_motion" (speed terms on the motion relative to the waves) or '
