@@ -437,7 +437,7 @@ class ActuatedSurfacesRecord(NamedTuple):
     rate: NDArray
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def actuated_surfaces_start(s, t, q, v, cmd, rec):  # pragma: no cover - compiled
     """Step start: the law's saturated target and integral rate, sampled and held."""
     rec.target[s], rec.rate[s] = actuator_target(
@@ -445,7 +445,7 @@ def actuated_surfaces_start(s, t, q, v, cmd, rec):  # pragma: no cover - compile
     )
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def actuated_surfaces_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
     """Row kernel: the servo's angle at t (:func:`servo_angle`, clipped to the surfaces'
     own limit) and the group's force (:func:`surface_group_force`) added to ``out``."""
@@ -465,7 +465,7 @@ def actuated_surfaces_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cov
         out[i] += work[i]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def actuated_surfaces_end(s, t, q, v, rec):  # pragma: no cover - compiled
     """Accepted step ending at t: the servo's angle, the integral and the sampled state
     (``actuator_commit_rows``)."""

@@ -546,7 +546,7 @@ def manoeuvring_force(nu, c_yv, c_yr, c_nv, c_nr, cda, x, crossflow, roll_lever,
     out[5] = n
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def manoeuvring_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
     """Row kernel: :func:`manoeuvring_force` with ``rec`` the tuple of
     :meth:`HullManoeuvring.kernel_parameters`."""

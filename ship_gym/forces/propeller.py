@@ -1194,7 +1194,7 @@ class PropellerRecord(NamedTuple):
     thrust_slot: int
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def propeller_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
     """Row kernel: :func:`propeller_force` at the shaft speed n = cmd[s, shaft_col] [rev/s];
     T goes to ``ctx.shared[thrust_slot]``."""

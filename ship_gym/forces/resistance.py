@@ -1304,7 +1304,7 @@ __all__ = [
 ]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def resistance_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
     """Row kernel: X = −R_T(|u|) sign(u) [N] (Holtrop–Mennen, :func:`holtrop_total`), ``rec``
     a 1-tuple of the parameter array of :meth:`CalmWaterResistance.kernel_parameters`."""

@@ -939,7 +939,7 @@ __all__ = [
 # =============================================================================================
 # row kernel of the compiled path (protocol: ship_gym.forces.base.RowPart)
 # =============================================================================================
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def viscous_roll_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
     """Row kernel: the roll moment −(B₁ p + B₂ |p| p) [N·m] (eq. 1), ``rec = (B₁, B₂)``."""
     p_roll = v[3]
