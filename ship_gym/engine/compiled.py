@@ -53,7 +53,6 @@ import numba as nb
 import numpy as np
 from numpy.typing import NDArray
 
-import ship_gym
 from ship_gym.engine.rigid_body import rigid_body_terms
 from ship_gym.forces.base import RowLayout, RowPart, WaveRecord
 from ship_gym.forces.diffraction import diffraction_force, diffraction_row
@@ -360,7 +359,7 @@ def _kernel_name(func: Any) -> tuple[str, str]:
 def _source_stamp(modules: set[str]) -> str:
     """A digest of the source files the composed step depends on: every file of the
     ``ship_gym`` package and the modules of the kernels (a changed kernel is a new step)."""
-    files: set[Path] = set(Path(ship_gym.__file__).parent.rglob("*.py"))
+    files: set[Path] = set(Path(__file__).resolve().parents[1].rglob("*.py"))  # the package
     for m in modules:
         f = getattr(sys.modules.get(m), "__file__", None)
         if f:
