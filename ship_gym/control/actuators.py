@@ -36,14 +36,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar, Protocol, cast
+from typing import ClassVar, NamedTuple, Protocol, cast
 
 import numba as nb
 import numpy as np
+from numpy.typing import NDArray
 
 from ship_gym.control.autopilot import heading_autopilot_law
 from ship_gym.control.stabilisers import fin_law, ride_law
 from ship_gym.forces.base import ForceContext, ForceModel
+from ship_gym.forces.lifting_surface import surface_group_force
 from ship_gym.typing import FloatArray
 
 MIN_LAG = 0.05
@@ -380,3 +382,97 @@ class Actuated(ForceModel):
             self._ship, np.array([ctx.t]), ctx.eta[None, :], ctx.nu[None, :], ref,
             *self._kernel_args(),
         )  # fmt: skip
+
+
+# =============================================================================================
+# row kernels of the compiled path (protocol: ship_gym.forces.base.RowPart)
+# =============================================================================================
+class ActuatedSurfacesRecord(NamedTuple):
+    """One surface group behind its servo and control law, for the compiled path.
+
+    Geometry of the group's surfaces (``pos`` … ``cn``: the arguments of
+    :func:`ship_gym.forces.lifting_surface.surface_group_force`), its inflow model (``inflow``,
+    ``wake``, ``gamma_v``, ``gamma_r``, ``prop_d``, ``prop_x``, ``thrust_mode``: 0 none, 1 the
+    propeller thrust in ``shared[thrust_slot]``, 2 the constant C_Th ``c_th``), the servo
+    (``surface_limit``, ``max_angle`` [rad], ``max_rate`` [rad/s], ``lag`` [s]), the law
+    (``kind``, ``gains``, the reference command's column ``ref_col``) and the per-ship actuator
+    states (N,) / (N, 6) shared with the numpy path, with the held target and integral rate.
+    """
+
+    pos: NDArray
+    axis: NDArray
+    chord: NDArray
+    lead: NDArray
+    area: NDArray
+    span: NDArray
+    rho: NDArray
+    lift_slope: NDArray
+    stall: NDArray
+    transition: NDArray
+    cd0: NDArray
+    k_induced: NDArray
+    cn: NDArray
+    inflow: int
+    wake: float
+    gamma_v: float
+    gamma_r: float
+    prop_d: float
+    prop_x: float
+    thrust_mode: int
+    c_th: float
+    thrust_slot: int
+    surface_limit: float
+    max_angle: float
+    max_rate: float
+    lag: float
+    kind: int
+    gains: NDArray
+    ref_col: int
+    delta: NDArray
+    integral: NDArray
+    t_step: NDArray
+    eta_step: NDArray
+    nu_step: NDArray
+    target: NDArray
+    rate: NDArray
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def actuated_surfaces_start(s, t, q, v, cmd, rec):  # pragma: no cover - compiled
+    """Step start: the law's saturated target and integral rate, sampled and held."""
+    rec.target[s], rec.rate[s] = actuator_target(
+        rec.kind, rec.gains, q, v, rec.integral[s], cmd[s, rec.ref_col], rec.max_angle
+    )
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def actuated_surfaces_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
+    """Row kernel: the servo's angle at t (:func:`servo_angle`, clipped to the surfaces'
+    own limit) and the group's force (:func:`surface_group_force`) added to ``out``."""
+    angle = servo_angle(rec.delta[s], rec.target[s], t - rec.t_step[s], rec.max_rate, rec.lag)
+    lim = rec.surface_limit
+    angle = min(max(angle, -lim), lim)
+    mode = rec.thrust_mode
+    th = ctx.shared[rec.thrust_slot] if mode == 1 else rec.c_th
+    work = ctx.work
+    surface_group_force(
+        v, angle, rec.inflow, rec.wake, rec.gamma_v, rec.gamma_r, rec.prop_d, rec.prop_x, mode,
+        th, rec.pos, rec.axis, rec.chord, rec.lead, rec.area, rec.span, rec.rho,
+        rec.lift_slope, rec.stall, rec.transition, rec.cd0, rec.k_induced, rec.cn, 0,
+        rec.pos.shape[0], work,
+    )  # fmt: skip
+    for i in range(6):
+        out[i] += work[i]
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def actuated_surfaces_end(s, t, q, v, rec):  # pragma: no cover - compiled
+    """Accepted step ending at t: the servo's angle, the integral and the sampled state
+    (``actuator_commit_rows``)."""
+    elapsed = t - rec.t_step[s]
+    rec.delta[s] = servo_angle(rec.delta[s], rec.target[s], elapsed, rec.max_rate, rec.lag)
+    rec.integral[s] += elapsed * rec.rate[s]
+    rec.t_step[s] = t
+    for i in range(6):
+        rec.eta_step[s, i] = q[i]
+        rec.nu_step[s, i] = v[i]

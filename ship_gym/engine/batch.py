@@ -66,7 +66,7 @@ import copy
 import math
 import time
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, Literal, NamedTuple
 
 import numba as nb
 import numpy as np
@@ -83,11 +83,15 @@ from ship_gym.forces.base import (
     BatchWaves,
     ForceContext,
     ForceModel,
+    RowLayout,
+    RowPart,
 )
 from ship_gym.forces.diffraction import (
     CACHE_COLUMNS,
     Diffraction,
+    DiffractionRecord,
     diffraction_force,
+    diffraction_row,
     refresh_diffraction_cache,
 )
 from ship_gym.forces.froude_krylov import (
@@ -96,14 +100,18 @@ from ship_gym.forces.froude_krylov import (
     WaveComponents,
     froude_krylov_hydrostatic,
     froude_krylov_hydrostatic_batch,
+    froude_krylov_record,
+    froude_krylov_row,
 )
 from ship_gym.forces.radiation import (
     ConstantCoefficientRadiation,
     RadiationMemory,
+    radiation_record,
+    radiation_row,
     speed_momentum_rows,
     state_space_radiation,
 )
-from ship_gym.forces.viscous import ViscousRollDamping
+from ship_gym.forces.viscous import ViscousRollDamping, viscous_roll_row
 from ship_gym.hull import equilibrium
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro.forward_speed import SpeedTerms, check_speed_cutoff, check_speed_terms
@@ -285,6 +293,14 @@ class BatchFroudeKrylov(BatchForceModel):
                 )
         return _to_body(ctx.rotation, f), _no_states(ctx.n)
 
+    def pack(self, layout: RowLayout) -> RowPart | None:
+        if self.method == "reference":
+            raise NotImplementedError("the reference Froude–Krylov kernel is numpy only")
+        record = froude_krylov_record(
+            self.panels._layout, self.rho * self.g, self.method == "fast32"
+        )
+        return RowPart(froude_krylov_row, record)
+
 
 def _csr(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
     """(indptr, indices, values) of the non-zeros of a dense matrix, row by row."""
@@ -401,6 +417,13 @@ class BatchStateSpaceRadiation(BatchForceModel):
         )  # fmt: skip
         return force, zdot
 
+    def pack(self, layout: RowLayout) -> RowPart | None:
+        record = radiation_record(
+            layout.forward_speed, self.matrices, self.feedthrough,
+            (self.momentum_added_mass, self.momentum_memory), self.speed_cutoff,
+        )  # fmt: skip
+        return RowPart(radiation_row, record, self.n_states)
+
 
 class BatchConstantRadiation(BatchForceModel):
     """Matusiak's constant-coefficient radiation (case 2a/2b): force −B_c ν_p, A_c on the left."""
@@ -422,6 +445,10 @@ class BatchConstantRadiation(BatchForceModel):
         vp = ctx.nu.copy()
         vp[:, SURGE] -= ctx.forward_speed
         return -(vp @ self._bt), _no_states(ctx.n)
+
+    def pack(self, layout: RowLayout) -> RowPart | None:
+        # constant coefficients (Matusiak 2a/2b): D = B_c, no states, no momentum terms
+        return RowPart(radiation_row, radiation_record(layout.forward_speed, None, self.damping))
 
 
 @nb.njit(cache=True)
@@ -549,6 +576,30 @@ class BatchDiffraction(BatchForceModel):
         )
         return force, _no_states(ctx.n)
 
+    def pack(self, layout: RowLayout) -> RowPart | None:
+        if self.template.above_range == "raise":  # the model's own error needs the numpy path
+            raise NotImplementedError("Diffraction(above_range='raise') is numpy only")
+        n, n_c, seas = layout.n_ships, layout.n_components, layout.seas
+        work = getattr(self, "_row_work", None)
+        if work is None or work[0].shape != (n, 3, n_c, CACHE_COLUMNS):
+            # per ship: ships refresh concurrently in the parallel loop
+            work = (np.zeros((n, 3, n_c, CACHE_COLUMNS), np.complex128), np.zeros(n, np.int64))
+            self._row_work = work
+        c = np.ascontiguousarray
+        record = DiffractionRecord(
+            *self.lookup, c(seas.direction, float), c(seas.omega, float),
+            c(seas.wavenumber, float), self.encounter, *self.speed_correction,
+            float(self.template.heading_step), float(self.tolerance),
+            float(layout.forward_speed), self._xd, self._dxd, self._ref, *work,
+        )  # fmt: skip
+        return RowPart(diffraction_row, record)
+
+    @property
+    def refresh_count(self) -> int:
+        """Cache refreshes inside the compiled loop since the model was first packed."""
+        work = getattr(self, "_row_work", None)
+        return 0 if work is None else int(work[1].sum())
+
 
 class BatchViscousRoll(BatchForceModel):
     """Viscous roll damping −(B1 p + B2 |p| p) in roll for all ships."""
@@ -571,6 +622,9 @@ class BatchViscousRoll(BatchForceModel):
         force = np.zeros((ctx.n, 6))
         force[:, ROLL] = -(self.b1 * p + self.b2 * np.abs(p) * p)
         return force, _no_states(ctx.n)
+
+    def pack(self, layout: RowLayout) -> RowPart | None:
+        return RowPart(viscous_roll_row, (self.b1, self.b2))
 
 
 class PerShipForceModel(BatchForceModel):
@@ -814,6 +868,34 @@ def _healthy_rows(q, v, z, v_max, ok):  # pragma: no cover - compiled
 # =============================================================================================
 # the simulator
 # =============================================================================================
+class EngineState(NamedTuple):
+    """The state of a batch that the compiled loop advances in place (rows per ship).
+
+    Attributes
+    ----------
+    t : numpy.ndarray
+        (N,) time [s].
+    eta, nu : numpy.ndarray
+        (N, 6) position and Euler angles [m, rad]; body velocities [m/s, rad/s].
+    z : numpy.ndarray
+        (N, n_states) the models' ODE states, concatenated in the models' order.
+    k_count : numpy.ndarray
+        (N,) steps since reset (Holloway's start-up).
+    pending : numpy.ndarray
+        (N,) bool, the η̇ history still holds the start-up's first differences.
+    history : tuple of numpy.ndarray
+        Holloway's histories (v1, v2, a1, a2, qd1, qd2, qdd1, qdd2, zd1, zd2).
+    """
+
+    t: NDArray
+    eta: NDArray
+    nu: NDArray
+    z: NDArray
+    k_count: NDArray
+    pending: NDArray
+    history: tuple
+
+
 def _servo_driven(model: Any) -> bool:
     """A batch force model with a servo and the angle it has reached (an actuator)."""
     return getattr(model, "servo", None) is not None and hasattr(model, "angle")
@@ -1003,6 +1085,37 @@ class BatchSimulator:
             self._forward_speed = u
             self._compiled = None
             self._compiled_error = None
+
+    # ------------------------------------------------------------------ engine state
+    @property
+    def seas(self) -> _Seas:
+        """The per-ship wave component arrays (N, n_c) (``amplitude`` [m], ``omega`` [rad/s],
+        ``phase`` [rad], ``direction`` [rad], ``wavenumber``, ``kx``, ``ky`` [rad/m]) and the
+        (N,) ``ramp_time`` [s]; replaced in place by :meth:`reset` with a new sea."""
+        return self._seas
+
+    def rigid_rows(self) -> tuple[NDArray, float, NDArray, NDArray, NDArray]:
+        """Per-ship rigid-body data for the compiled loop: M_RB about O (N, 6, 6), the weight
+        m g [N], G (N, 3), the held angles (3,) and the inverse of the free block of
+        M_RB + A_lhs (N, 6, 6; zeros for held DOFs)."""
+        idx = self._free_idx
+        m_inv = np.zeros((self.n_ships, 6, 6))
+        m_inv[:, idx[:, None], idx[None, :]] = np.transpose(self._ship_m_inv_t, (0, 2, 1))
+        c = np.ascontiguousarray
+        return (
+            c(self._ship_mass_rb, float), float(self._weight), c(self._ship_cog, float),
+            c(self._held_angles, np.bool_), m_inv,
+        )  # fmt: skip
+
+    def engine_state(self) -> EngineState:
+        """The arrays the compiled loop advances in place (:class:`EngineState`, views)."""
+        return EngineState(
+            self.t, self.eta, self.nu, self.z, self._k, self._pending,
+            (
+                self._v1, self._v2, self._a1, self._a2, self._qd1, self._qd2, self._qdd1,
+                self._qdd2, self._zd1, self._zd2,
+            ),
+        )  # fmt: skip
 
     # ------------------------------------------------------------------ compiled backend
     @property

@@ -52,30 +52,37 @@ from scipy.optimize import brentq
 from ship_gym.control.actuators import (
     NO_CONTROLLER,
     Actuated,
+    ActuatedSurfacesRecord,
     ActuatorKernelArguments,
     ActuatorStates,
     ServoSpec,
+    actuated_surfaces_end,
+    actuated_surfaces_row,
+    actuated_surfaces_start,
     actuator_angle_rows,
     actuator_commit_rows,
     actuator_kernel_arguments,
     law_parameters,
 )
 from ship_gym.conventions import SURGE
-from ship_gym.forces.base import BatchContext, BatchForceModel, ForceModel
+from ship_gym.forces.base import BatchContext, BatchForceModel, ForceModel, RowLayout, RowPart
 from ship_gym.forces.fins import RollFins, SternFlaps, TFoil
 from ship_gym.forces.lifting_surface import SurfaceGroup, surface_group_force
 from ship_gym.forces.manoeuvring import (
     HullManoeuvring,
     ManoeuvringKernelParameters,
     manoeuvring_force,
+    manoeuvring_row,
 )
 from ship_gym.forces.propeller import (
     SHAFT_SPEED_COMMAND,
     Propeller,
     PropellerKernelParameters,
+    PropellerRecord,
     propeller_force,
+    propeller_row,
 )
-from ship_gym.forces.resistance import CalmWaterResistance
+from ship_gym.forces.resistance import CalmWaterResistance, resistance_row
 from ship_gym.forces.rudder import Rudder
 
 __all__ = [
@@ -194,6 +201,10 @@ class BatchResistance(BatchForceModel):
                 force[i, SURGE] = -math.copysign(float(curve(abs(u))), u)
         return force, _no_states(ctx.n)
 
+    def pack(self, layout: RowLayout) -> RowPart | None:
+        holtrop = self.kernel_parameters()  # raises for a bare curve (numpy only)
+        return RowPart(resistance_row, (np.ascontiguousarray(holtrop, dtype=float),))
+
 
 @nb.njit(cache=True, nogil=True)
 def _propeller_rows(
@@ -238,6 +249,16 @@ class BatchPropeller(BatchForceModel):
         ctx.shared["propeller_thrust"] = thrust
         return force, _no_states(ctx.n)
 
+    def pack(self, layout: RowLayout) -> RowPart | None:
+        kt, kq, *scalars = self.params
+        c = np.ascontiguousarray
+        record = PropellerRecord._make((
+            c(kt, float), c(kq, float), *(float(x) for x in scalars),
+            layout.column(SHAFT_SPEED_COMMAND, self.default_shaft_speed),
+            layout.slot("propeller_thrust"),
+        ))  # fmt: skip
+        return RowPart(propeller_row, record)
+
 
 @nb.njit(cache=True, nogil=True)
 def _manoeuvring_rows(
@@ -269,6 +290,15 @@ class BatchHullManoeuvring(BatchForceModel):
         force = np.empty((ctx.n, 6))
         _manoeuvring_rows(ctx.nu, self.params, force)
         return force, _no_states(ctx.n)
+
+    def pack(self, layout: RowLayout) -> RowPart | None:
+        p = self.params
+        c = np.ascontiguousarray
+        record = (
+            float(p[0]), float(p[1]), float(p[2]), float(p[3]), c(p[4], float), c(p[5], float),
+            bool(p[6]), float(p[7]),
+        )  # fmt: skip
+        return RowPart(manoeuvring_row, record)
 
 
 # =============================================================================================
@@ -462,6 +492,49 @@ class BatchActuatedSurfaces(BatchForceModel):
             ctx.ships, np.ascontiguousarray(ctx.t, dtype=float), ctx.eta, ctx.nu,
             self.reference(ctx), *self._kernel_args(),
         )  # fmt: skip
+
+    def pack(self, layout: RowLayout) -> RowPart | None:
+        if self.servo is None:  # the angle as a command
+            raise NotImplementedError(f"the bare surface group {self.name!r} is numpy only")
+        has_propeller = "propeller_thrust" in layout.slots
+        mode, c_th = _THRUST_NONE, 0.0
+        if self.rudder is not None:
+            if has_propeller:
+                mode = _THRUST_GIVEN
+            elif self.rudder.thrust_coefficient is not None:
+                mode, c_th = _THRUST_COEFFICIENT, float(self.rudder.thrust_coefficient)
+            if not has_propeller:
+                # without a propeller the numpy path takes the slipstream from these commands;
+                # the compiled kernel knows only the rudder's C_Th
+                layout.numpy_only_commands |= {"propeller_thrust", "propeller_thrust_coefficient"}
+        if self.kind == 1:
+            # without a heading command: the heading at each ship's reset
+            ref_col = layout.column(
+                self.controller.heading_key, lambda: self.states.initial_heading
+            )
+        elif self.kind == NO_CONTROLLER:
+            ref_col = layout.column(self.command_key, 0.0)
+        else:
+            ref_col = layout.column(f"{self.name}_unused", 0.0)
+        n = layout.n_ships
+        held = getattr(self, "_row_held", None)
+        if held is None or held[0].shape != (n,):
+            held = (np.zeros(n), np.zeros(n))  # the target and integral rate held over a step
+            self._row_held = held
+        st = self.states
+        c = np.ascontiguousarray
+        record = ActuatedSurfacesRecord._make((
+            *(c(g, float) for g in self.geometry), int(self.inflow), float(self.wake_fraction),
+            float(self.straightening[0]), float(self.straightening[1]),
+            float(self.propeller_geometry[0]), float(self.propeller_geometry[1]), mode, c_th,
+            layout.slot("propeller_thrust") if mode == _THRUST_GIVEN else 0,
+            float(self.surface_limit), float(self.servo.max_angle), float(self.servo.max_rate),
+            float(self.servo.lag), int(self.kind), c(self.gains, float), ref_col, st.delta,
+            st.integral, st.t_step, st.eta_step, st.nu_step, *held,
+        ))  # fmt: skip
+        return RowPart(
+            actuated_surfaces_row, record, 0, actuated_surfaces_start, actuated_surfaces_end
+        )
 
 
 # =============================================================================================

@@ -1,28 +1,26 @@
 """The compiled backend of the row engine: K physics steps of N ships in one numba call.
 
-:class:`CompiledBackend` takes the batch force models of a
-:class:`~ship_gym.engine.batch.BatchSimulator` and packs their data into records (named tuples
-of arrays: :class:`HullRecord`, :class:`WaveRecord`, :class:`RigidRecord`,
-:class:`RadiationRecord`, :class:`DiffractionRecord`, :class:`PropulsionRecord`,
-:class:`ManoeuvringRecord`, :class:`SurfacesRecord`); :meth:`CompiledBackend.advance` then runs, for
-every ship, up to K steps with the commands held, calling the **same** numba kernels the
-models use on rows:
+The engine knows the row protocol of :mod:`ship_gym.forces.base`, never a force by name. Each
+model of a :class:`~ship_gym.engine.batch.BatchSimulator` packs itself
+(:meth:`~ship_gym.forces.base.BatchForceModel.pack` → :class:`~ship_gym.forces.base.RowPart`:
+a numba row kernel, its record of arrays, its number of ODE states, optional step-start and
+step-end hooks). :class:`CompiledBackend` then **composes** the compiled step from those
+kernels: it writes the source of one small module that imports the kernels by name and calls
+them in the models' order (:func:`step_module`), keyed by the set of kernels, in a cache folder
+(``SHIP_GYM_CACHE_DIR``, default ``~/.cache/ship_gym``; numba caches the machine code beside
+it, so a second process does not compile again). Per evaluation of ship s the composed step
 
-* Froude–Krylov + hydrostatics on the instantaneous wetted hull
-  (:func:`ship_gym.forces.froude_krylov._fk_core`, float64, or ``_fk_core_f32`` with float32
-  wave sums);
-* state-space radiation memory or Matusiak's constant coefficients (2a/2b);
-* diffraction with the per-ship heading cache refreshed inside the loop
-  (:func:`ship_gym.forces.diffraction.transfer_element`);
-* viscous roll damping; Holtrop–Mennen resistance
-  (:func:`ship_gym.forces.resistance.holtrop_total`); the B-series propeller
-  (:func:`ship_gym.engine.batch_control.propeller_force`); Clarke manoeuvring forces
-  (:func:`~ship_gym.engine.batch_control.manoeuvring_force`); rudder, fins, T-foil and flaps
-  (:func:`~ship_gym.engine.batch_control.surface_group_force`) behind their sampled servos
-  and feedback laws (:func:`ship_gym.control.actuators.actuator_target`,
-  :func:`~ship_gym.control.actuators.servo_angle`);
-* gravity, Coriolis–centripetal terms, kinematics; Holloway's μ-Taylor scheme after two RK4
-  start-up steps per ship, or RK4.
+* computes the rigid-body terms (:func:`ship_gym.engine.rigid_body.rigid_body_terms`: R(φ, θ,
+  ψ), gravity and Coriolis–centripetal terms, η̇ = J(η) ν) and the wave components at the
+  ship's origin (:func:`_local_phasors`), which every kernel sees in a
+  :class:`~ship_gym.forces.base.RowContext`;
+* calls each model's kernel, which adds its body-axis force about O and writes the derivative
+  of its own slice of the ODE states z;
+* solves ν̇ = M⁻¹ F with the per-ship inverse of the free block of M_RB + A(∞).
+
+Around the evaluations it runs Holloway's μ-Taylor scheme after two RK4 start-up steps per
+ship, or RK4, and calls the models' step-start hooks (commands sampled and held) and step-end
+hooks (accepted steps).
 
 Ships are independent in the loop (no reduction across ships reaches a state), so ship i of a
 batch of N evolves bit for bit as the same ship alone; with ``parallel=True`` the ships are
@@ -33,86 +31,54 @@ numpy path of :class:`BatchSimulator` (the reference, ``backend="numpy"``); the 
 use the polynomial :func:`ship_gym.numerics.fastmath.sincos_turns` instead of libm, so the two
 agree to rounding, not bit for bit (tested).
 
-Not compiled (the engine falls back to its numpy path): per-ship Python models
-(:class:`~ship_gym.engine.batch.PerShipForceModel`, e.g. added resistance in waves), a
-resistance curve that is not Holtrop–Mennen, ``Diffraction(above_range="raise")``, the
-``"propeller_thrust"`` commands of a rudder without a propeller.
+A model whose ``pack`` returns ``None`` (per-ship Python models such as added resistance in
+waves, a resistance curve that is not Holtrop–Mennen, ``Diffraction(above_range="raise")``, a
+bare surface group) sends the batch to the numpy path; so do the commands a model declares
+numpy only (:attr:`~ship_gym.forces.base.RowLayout.numpy_only_commands`).
 """
 
 from __future__ import annotations
 
+import hashlib
+import importlib.util
 import math
+import os
+import sys
+import tempfile
+from pathlib import Path
+from string import Template
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numba as nb
 import numpy as np
 from numpy.typing import NDArray
 
-from ship_gym.control.actuators import actuator_target, servo_angle
-from ship_gym.engine.batch_control import (
-    BatchActuatedSurfaces,
-    BatchHullManoeuvring,
-    BatchPropeller,
-    BatchResistance,
-)
-from ship_gym.engine.rigid_body import healthy_state, rigid_body_terms
-from ship_gym.forces.diffraction import (
-    CACHE_COLUMNS,
-    diffraction_force,
-    refresh_diffraction_cache,
-)
-from ship_gym.forces.froude_krylov import _fk_core, _fk_core_f32
-from ship_gym.forces.lifting_surface import surface_group_force
-from ship_gym.forces.manoeuvring import manoeuvring_force
-from ship_gym.forces.propeller import propeller_force
-from ship_gym.forces.radiation import state_space_radiation
-from ship_gym.forces.resistance import holtrop_total
-from ship_gym.numerics.angles import wrap_angle_scalar
+from ship_gym.engine.rigid_body import rigid_body_terms
+from ship_gym.forces.base import RowLayout, RowPart, WaveRecord
+from ship_gym.forces.diffraction import diffraction_force, diffraction_row
+from ship_gym.forces.diffraction import refresh_diffraction_cache as refresh_diffraction_cache
+from ship_gym.forces.froude_krylov import _fk_core, _fk_core_f32, froude_krylov_row
+from ship_gym.forces.radiation import radiation_record, radiation_row, state_space_radiation
+from ship_gym.forces.viscous import viscous_roll_row
 from ship_gym.numerics.fastmath import sincos_turns
 
 if TYPE_CHECKING:
+    from types import ModuleType
+
     from ship_gym.engine.batch import BatchSimulator
     from ship_gym.engine.ship import Sea, ShipSetup
     from ship_gym.waves.wave_field import WaveField
 
-__all__ = ["CompiledBackend", "CompiledShip", "StepReductions", "build_compiled_ship"]
+__all__ = [
+    "CompiledBackend",
+    "CompiledShip",
+    "StepReductions",
+    "build_compiled_ship",
+    "step_module",
+]
 
 _TWO_PI = 2.0 * math.pi
 _HOLLOWAY_STARTUP = 2  # RK4 steps before μ-Taylor steps (as BatchSimulator)
-_MAX_GROUPS = 4  # rudder, fins, T-foil, flaps
-
-
-# ============================================================================================
-# records
-# ============================================================================================
-class HullRecord(NamedTuple):
-    """The Froude–Krylov kernel's hull layout (:class:`HullPanels`) and ρg [N/m³]."""
-
-    body: NDArray
-    tri: NDArray
-    tri_last: NDArray
-    tri_first: NDArray
-    spread: NDArray
-    weights: NDArray
-    areas: NDArray
-    rho_g: float
-    single: bool
-
-
-class WaveRecord(NamedTuple):
-    """(N, n_c) component arrays per ship in turns: aⱼ [m], ωⱼ/2π, εⱼ/2π, kⱼcosχⱼ/2π,
-    kⱼsinχⱼ/2π [turns/m], kⱼ/ln 2; float32 copies; (N,) ramp times [s]."""
-
-    amplitude: NDArray
-    omega_t: NDArray
-    phase_t: NDArray
-    ramp_time: NDArray
-    kxt: NDArray
-    kyt: NDArray
-    k2: NDArray
-    kxt32: NDArray
-    kyt32: NDArray
-    k232: NDArray
 
 
 class RigidRecord(NamedTuple):
@@ -124,127 +90,6 @@ class RigidRecord(NamedTuple):
     cog: NDArray
     held_angle: NDArray
     m_inv: NDArray
-
-
-class RadiationRecord(NamedTuple):
-    """State-space A, B, C in CSR form and D (6, 6) (constant coefficients: no states, D = B_c)."""
-
-    speed: float
-    a_ptr: NDArray
-    a_idx: NDArray
-    a_val: NDArray
-    b_ptr: NDArray
-    b_idx: NDArray
-    b_val: NDArray
-    c_ptr: NDArray
-    c_idx: NDArray
-    c_val: NDArray
-    d_mat: NDArray
-    has_d: bool
-    p_inf: NDArray
-    p_mem: NDArray
-    cutoff: float
-
-
-class DiffractionRecord(NamedTuple):
-    """The diffraction table and the per-ship caches (:class:`BatchDiffraction`'s arrays)."""
-
-    enabled: bool
-    table: NDArray
-    beta_ext: NDArray
-    omega_db: NDArray
-    direction: NDArray
-    omega: NDArray
-    wavenumber: NDArray
-    encounter: bool
-    kirchhoff: NDArray
-    mass_grid: NDArray
-    complex_mass: NDArray
-    step: float
-    tolerance: float
-    xd: NDArray
-    dxd: NDArray
-    ref: NDArray
-    work: NDArray
-    refresh_count: NDArray
-
-
-class PropulsionRecord(NamedTuple):
-    """Holtrop–Mennen resistance, the propeller (:func:`propeller_force`'s arguments)."""
-
-    has_resistance: bool
-    holtrop: NDArray
-    has_propeller: bool
-    kt_c: NDArray
-    kq_c: NDArray
-    j0: float
-    diameter: float
-    rho_d4: float
-    one_minus_w: float
-    one_minus_t: float
-    eta_r: float
-    astern: float
-    z_p: float
-    y_p: float
-    roll_sign: float
-    shaft_col: int
-    viscous_b1: float
-    viscous_b2: float
-
-
-class ManoeuvringRecord(NamedTuple):
-    """:func:`manoeuvring_force`'s arguments."""
-
-    enabled: bool
-    c_yv: float
-    c_yr: float
-    c_nv: float
-    c_nr: float
-    cda: NDArray
-    x: NDArray
-    crossflow: bool
-    roll_lever: float
-
-
-class SurfacesRecord(NamedTuple):
-    """Surface groups behind servos: concatenated surface geometry (ptr (G+1,)), per-group
-    inflow and servo data (G,), and the actuators' per-ship states (G, N[, 6])."""
-
-    n_groups: int
-    ptr: NDArray
-    pos: NDArray
-    axis: NDArray
-    chord: NDArray
-    lead: NDArray
-    area: NDArray
-    span: NDArray
-    rho: NDArray
-    lift_slope: NDArray
-    stall: NDArray
-    transition: NDArray
-    cd0: NDArray
-    k_induced: NDArray
-    cn: NDArray
-    inflow: NDArray
-    wake: NDArray
-    gamma_v: NDArray
-    gamma_r: NDArray
-    prop_d: NDArray
-    prop_x: NDArray
-    thrust_mode: NDArray
-    c_th: NDArray
-    surface_limit: NDArray
-    max_angle: NDArray
-    max_rate: NDArray
-    lag: NDArray
-    kind: NDArray
-    gains: NDArray
-    ref_col: NDArray
-    delta: NDArray
-    integral: NDArray
-    t_step: NDArray
-    eta_step: NDArray
-    nu_step: NDArray
 
 
 class StepReductions(NamedTuple):
@@ -272,17 +117,6 @@ def _c(array: Any, dtype: type = np.float64) -> NDArray:
     return np.ascontiguousarray(array, dtype=dtype)
 
 
-def _csr(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
-    m = np.asarray(matrix, dtype=float)
-    rows, cols = np.nonzero(m)
-    ptr = np.zeros(m.shape[0] + 1, dtype=np.int64)
-    np.add.at(ptr, rows + 1, 1)
-    return _c(np.cumsum(ptr), np.int64), _c(cols, np.int64), _c(m[rows, cols])
-
-
-# ============================================================================================
-# kernels
-# ============================================================================================
 @nb.njit(cache=True, nogil=True)
 def _local_phasors(t, x, y, amplitude, omega_t, phase_t, ramp_time, kxt, kyt, mod, offset, local):
     """The components at the ship's O: c'ⱼ = cⱼ(t) e^{−i kⱼ (x cos χⱼ + y sin χⱼ)} with
@@ -310,104 +144,39 @@ def _local_phasors(t, x, y, amplitude, omega_t, phase_t, ramp_time, kxt, kyt, mo
     return crest
 
 
-@nb.njit(cache=True, nogil=True)
-def _viscous_roll(v, b1, b2, total):  # pragma: no cover - compiled
-    """Viscous roll damping −(B1 p + B2 |p| p) added to the roll moment."""
-    p_roll = v[3]
-    total[3] += -(b1 * p_roll + b2 * abs(p_roll) * p_roll)
+# ============================================================================================
+# the composed step
+# ============================================================================================
+_STEP_SOURCE = Template('''\
+"""Compiled step of ship_gym composed by ship_gym.engine.compiled.step_module (generated:
+do not edit). Kernels, in the models' order: $names."""
+
+import numba as nb
+import numpy as np
+
+from ship_gym.engine.compiled import _local_phasors
+from ship_gym.engine.rigid_body import healthy_state, rigid_body_terms
+from ship_gym.forces.base import RowContext
+$imports
+
+_HOLLOWAY_STARTUP = $startup
 
 
 @nb.njit(cache=True, nogil=True)
-def _evaluate(
-    s, t, q, v, z, hull, waves, rigid, rad, diff, prop, man, surf, cmd, targets, work6,
-    local, mod, offset, acc, zdot, qdot,
-):  # fmt: skip  # pragma: no cover - compiled
-    """ν̇, ż and η̇ of ship s at (t, q, v, z); the actuators' targets are held."""
-    if diff.enabled:
-        psi = q[5]
-        ref = diff.ref[s, 0]
-        stale = np.isnan(ref) or abs(wrap_angle_scalar(psi - ref)) > diff.tolerance
-        if stale:
-            dtab = (
-                diff.table, diff.beta_ext, diff.omega_db, diff.direction[s], diff.omega[s],
-                diff.wavenumber[s], diff.encounter, diff.kirchhoff, diff.mass_grid,
-                diff.complex_mass, diff.step, False, diff.work[s], diff.refresh_count[s : s + 1],
-            )  # fmt: skip
-            speed = diff.ref[s, 1]  # U_s: the ship's speed at its reset
-            if np.isnan(speed):
-                speed = rad.speed
-            refresh_diffraction_cache(psi, speed, dtab, diff.xd[s], diff.dxd[s], diff.ref[s])
-    rot = np.empty((3, 3))
-    total = np.empty(6)
+def _evaluate(s, t, q, v, z, zo, ctx, rigid, ${rp}total, acc, zdot, qdot):
+    """ν̇ (acc), ż and η̇ (qdot) of ship s at (t, q, v, z)."""
     rigid_body_terms(
-        q, v, rigid.mass[s], rigid.weight, rigid.cog[s], rigid.held_angle, rot, total, qdot
+        q, v, rigid.mass[s], rigid.weight, rigid.cog[s], rigid.held_angle, ctx.rot, total, qdot
     )
-    crest = _local_phasors(
-        t, q[0], q[1], waves.amplitude[s], waves.omega_t[s], waves.phase_t[s],
-        waves.ramp_time[s], waves.kxt[s], waves.kyt[s], mod, offset, local,
-    )  # fmt: skip
-    fe = np.zeros(6)
-    if hull.single:
-        _fk_core_f32(
-            hull.body, hull.tri, hull.tri_last, hull.tri_first, hull.spread, hull.weights,
-            hull.areas, rot, q[2], waves.kxt32[s], waves.kyt32[s], waves.k232[s],
-            mod.astype(np.float32), offset.astype(np.float32), crest, hull.rho_g, fe,
-        )  # fmt: skip
-    else:
-        _fk_core(
-            hull.body, hull.tri, hull.tri_last, hull.tri_first, hull.spread, hull.weights,
-            hull.areas, rot, q[2], waves.kxt[s], waves.kyt[s], waves.k2[s], mod, offset, crest,
-            hull.rho_g, fe,
-        )  # fmt: skip
-    for i in range(3):
-        total[i] += rot[0, i] * fe[0] + rot[1, i] * fe[1] + rot[2, i] * fe[2]
-    for i in range(3):
-        total[3 + i] += rot[0, i] * fe[3] + rot[1, i] * fe[4] + rot[2, i] * fe[5]
-    state_space_radiation(
-        v, z, rad.speed, rad.a_ptr, rad.a_idx, rad.a_val, rad.b_ptr, rad.b_idx, rad.b_val,
-        rad.c_ptr, rad.c_idx, rad.c_val, rad.d_mat, rad.has_d, rad.p_inf, rad.p_mem, rad.cutoff,
-        total, zdot,
-    )  # fmt: skip
-    if diff.enabled:
-        diffraction_force(q[5], v[0], local, diff.xd[s], diff.dxd[s], diff.ref[s], total)
-    p_roll = v[3]
-    total[3] += -(prop.viscous_b1 * p_roll + prop.viscous_b2 * abs(p_roll) * p_roll)
-    # control forces, in the order of the batch models (resistance, propeller, hull, surfaces)
-    if prop.has_resistance and v[0] != 0.0:
-        total[0] += -math.copysign(holtrop_total(prop.holtrop, abs(v[0])), v[0])
-    thrust = 0.0
-    if prop.has_propeller:
-        thrust = propeller_force(
-            v[0], cmd[s, prop.shaft_col], prop.kt_c, prop.kq_c, prop.j0, prop.diameter,
-            prop.rho_d4, prop.one_minus_w, prop.one_minus_t, prop.eta_r, prop.astern, prop.z_p,
-            prop.y_p, prop.roll_sign, work6,
-        )  # fmt: skip
-        for i in range(6):
-            total[i] += work6[i]
-    if man.enabled:
-        manoeuvring_force(
-            v, man.c_yv, man.c_yr, man.c_nv, man.c_nr, man.cda, man.x, man.crossflow,
-            man.roll_lever, work6,
-        )  # fmt: skip
-        for i in range(6):
-            total[i] += work6[i]
-    for g in range(surf.n_groups):
-        angle = servo_angle(
-            surf.delta[g, s], targets[g], t - surf.t_step[g, s], surf.max_rate[g], surf.lag[g]
-        )
-        lim = surf.surface_limit[g]
-        angle = min(max(angle, -lim), lim)
-        mode = surf.thrust_mode[g]
-        th = thrust if mode == 1 else surf.c_th[g]
-        surface_group_force(
-            v, angle, surf.inflow[g], surf.wake[g], surf.gamma_v[g], surf.gamma_r[g],
-            surf.prop_d[g], surf.prop_x[g], mode, th, surf.pos, surf.axis, surf.chord,
-            surf.lead, surf.area, surf.span, surf.rho, surf.lift_slope, surf.stall,
-            surf.transition, surf.cd0, surf.k_induced, surf.cn, surf.ptr[g], surf.ptr[g + 1],
-            work6,
-        )  # fmt: skip
-        for i in range(6):
-            total[i] += work6[i]
+    w = ctx.waves
+    shared = ctx.shared
+    shared[0] = _local_phasors(
+        t, q[0], q[1], w.amplitude[s], w.omega_t[s], w.phase_t[s], w.ramp_time[s], w.kxt[s],
+        w.kyt[s], ctx.mod, ctx.offset, ctx.local,
+    )
+    for i in range(1, shared.shape[0]):
+        shared[i] = 0.0
+$kernels
     m_inv = rigid.m_inv[s]
     for i in range(6):
         a = 0.0
@@ -419,8 +188,8 @@ def _evaluate(
 @nb.njit(cache=True, nogil=True)
 def _advance_ship(
     s, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending, hist,
-    hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum, red_danger,
-):  # fmt: skip  # pragma: no cover - compiled
+    waves, rigid, ${rp}zo, n_shared, cmd, red_max, red_sum, red_danger,
+):
     """Up to n_steps steps of ship s; returns the number of steps completed (fewer: it
     diverged, the state of that step's start kept). ``hist``: the Holloway histories (v1, v2,
     a1, a2, qd1, qd2, qdd1, qdd2, zd1, zd2), rows per ship."""
@@ -434,27 +203,19 @@ def _advance_ship(
     a2s, d2, g2 = np.empty(6), np.empty(6), np.empty(nz)
     a3s, d3, g3 = np.empty(6), np.empty(6), np.empty(nz)
     a4s, d4, g4 = np.empty(6), np.empty(6), np.empty(nz)
-    local = np.empty(n_c, dtype=np.complex128)
-    mod, offset = np.empty(n_c), np.empty(n_c)
-    work6 = np.empty(6)
-    n_g = surf.n_groups
-    targets = np.zeros(_MAX_GROUPS)
-    rates = np.zeros(_MAX_GROUPS)
+    total = np.empty(6)
+    ctx = RowContext(
+        np.empty((3, 3)), waves, np.empty(n_c), np.empty(n_c), np.empty(n_c, dtype=np.complex128),
+        cmd, np.zeros(n_shared), np.empty(6),
+    )
     c = 0.5 / dt
     h2 = 0.5 * dt * dt
     h3 = dt * dt * dt / 6.0
     roll_max = abs(q[3])
     for step in range(n_steps):
         t = t_arr[s]
-        for g in range(n_g):  # commands sampled at the step start, held over the step
-            targets[g], rates[g] = actuator_target(
-                surf.kind[g], surf.gains[g], q, v, surf.integral[g, s],
-                cmd[s, surf.ref_col[g]], surf.max_angle[g],
-            )  # fmt: skip
-        _evaluate(
-            s, t, q, v, zz, hull, waves, rigid, rad, diff, prop, man, surf, cmd, targets,
-            work6, local, mod, offset, a_c, g_c, d_c,
-        )  # fmt: skip
+$starts
+        _evaluate(s, t, q, v, zz, zo, ctx, rigid, ${rp}total, a_c, g_c, d_c)
         if use_rk4 or k_count[s] < _HOLLOWAY_STARTUP:
             hh = 0.5 * dt
             for stage in range(3):
@@ -472,10 +233,7 @@ def _advance_ship(
                     vs[i] = v[i] + cs * ca[i]
                 for i in range(nz):
                     zs[i] = zz[i] + cs * ga[i]
-                _evaluate(
-                    s, tt, qs, vs, zs, hull, waves, rigid, rad, diff, prop, man, surf, cmd,
-                    targets, work6, local, mod, offset, ao, go, do,
-                )  # fmt: skip
+                _evaluate(s, tt, qs, vs, zs, zo, ctx, rigid, ${rp}total, ao, go, do)
             c6 = dt / 6.0
             for i in range(6):
                 q_new[i] = q[i] + c6 * (d_c[i] + 2.0 * (d2[i] + d3[i]) + d4[i])
@@ -538,16 +296,7 @@ def _advance_ship(
                 zd1[s, i] = g_c[i]
             pending[s] = False
         t_new = t + dt
-        for g in range(n_g):  # the actuators' accepted step (actuator_commit_rows)
-            elapsed = t_new - surf.t_step[g, s]
-            surf.delta[g, s] = servo_angle(
-                surf.delta[g, s], targets[g], elapsed, surf.max_rate[g], surf.lag[g]
-            )
-            surf.integral[g, s] += elapsed * rates[g]
-            surf.t_step[g, s] = t_new
-            for i in range(6):
-                surf.eta_step[g, s, i] = q_new[i]
-                surf.nu_step[g, s, i] = v_new[i]
+$ends
         for i in range(6):
             q[i] = q_new[i]
             v[i] = v_new[i]
@@ -566,31 +315,149 @@ def _advance_ship(
 
 
 @nb.njit(cache=True, nogil=True)
-def _advance_serial(
+def advance_serial(
     ships, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending, hist,
-    hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum, red_danger, done,
-):  # fmt: skip  # pragma: no cover - compiled
+    waves, rigid, ${rp}zo, n_shared, cmd, red_max, red_sum, red_danger, done,
+):
     for r in range(ships.shape[0]):
         s = ships[r]
         done[s] = _advance_ship(
             s, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending,
-            hist, hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum,
-            red_danger,
-        )  # fmt: skip
+            hist, waves, rigid, ${rp}zo, n_shared, cmd, red_max, red_sum, red_danger,
+        )
 
 
 @nb.njit(cache=True, nogil=True, parallel=True)
-def _advance_parallel(
+def advance_parallel(
     ships, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending, hist,
-    hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum, red_danger, done,
-):  # fmt: skip  # pragma: no cover - compiled
+    waves, rigid, ${rp}zo, n_shared, cmd, red_max, red_sum, red_danger, done,
+):
     for r in nb.prange(ships.shape[0]):
         s = ships[r]
+        # the records travel one by one, as arguments (numba's parfor finds a record's type
+        # only from an argument of the function)
         done[s] = _advance_ship(
             s, n_steps, use_rk4, dt, mu, v_max, danger, t_arr, eta, nu, z, k_count, pending,
-            hist, hull, waves, rigid, rad, diff, prop, man, surf, cmd, red_max, red_sum,
-            red_danger,
-        )  # fmt: skip
+            hist, waves, rigid, ${rp}zo, n_shared, cmd, red_max, red_sum, red_danger,
+        )
+''')
+
+
+def _kernel_name(func: Any) -> tuple[str, str]:
+    """(module, qualified name) of a module-level numba kernel, checked importable."""
+    module = getattr(func, "__module__", None)
+    name = getattr(func, "__qualname__", getattr(func, "__name__", None))
+    if not module or not name or "." in name or "<" in name:
+        raise NotImplementedError(
+            f"row kernel {func!r} must be a numba.njit function at the top level of a module"
+        )
+    if getattr(sys.modules.get(module), name, None) is not func:
+        raise NotImplementedError(f"row kernel {module}.{name} is not importable by that name")
+    return module, name
+
+
+def _source_stamp(modules: set[str]) -> str:
+    """A digest of the source files the composed step depends on: every file of the
+    ``ship_gym`` package and the modules of the kernels (a changed kernel is a new step)."""
+    files: set[Path] = set(Path(__file__).resolve().parents[1].rglob("*.py"))  # the package
+    for m in modules:
+        f = getattr(sys.modules.get(m), "__file__", None)
+        if f:
+            files.add(Path(f))
+    h = hashlib.sha256()
+    for f in sorted(files):
+        st = f.stat()
+        h.update(f"{f}:{st.st_mtime_ns}:{st.st_size}\n".encode())
+    return h.hexdigest()[:16]
+
+
+def _cache_dir() -> Path:
+    """Where composed steps are written: ``SHIP_GYM_CACHE_DIR``, else ``~/.cache/ship_gym``
+    (the system's temporary folder when that is not writable)."""
+    env = os.environ.get("SHIP_GYM_CACHE_DIR")
+    candidates = [Path(env)] if env else []
+    candidates += [Path.home() / ".cache" / "ship_gym", Path(tempfile.gettempdir()) / "ship_gym"]
+    for d in candidates:
+        try:
+            (d / "steps").mkdir(parents=True, exist_ok=True)
+            if os.access(d / "steps", os.W_OK):
+                return d / "steps"
+        except OSError:
+            continue
+    raise OSError("no writable folder for the composed compiled steps")
+
+
+_STEPS: dict[tuple, ModuleType] = {}
+_STAMPS: dict[frozenset, str] = {}
+
+
+def step_module(parts: list[RowPart]) -> ModuleType:
+    """The compiled step composed of ``parts``' kernels, in their order.
+
+    The source (:data:`_STEP_SOURCE`) calls each kernel with its record ``recs[i]`` and its slice
+    ``z[zo[i]:zo[i + 1]]`` of the ODE states, and each hook at the step start and end; it is
+    written once per set of kernels (and source stamp of the package) in :func:`_cache_dir` and
+    imported, so numba's disk cache serves the next process. Returns the module (functions
+    ``advance_serial`` and ``advance_parallel``).
+    """
+    funcs = [(p.kernel, p.step_start, p.step_end) for p in parts]
+    key = tuple(funcs)
+    module = _STEPS.get(key)
+    if module is not None:
+        return module
+    imports: list[str] = []
+    names: dict[Any, str] = {}
+    modules: set[str] = set()
+
+    def alias(func: Any) -> str:
+        if func not in names:
+            mod, name = _kernel_name(func)
+            names[func] = f"_k{len(names)}"
+            modules.add(mod)
+            imports.append(f"from {mod} import {name} as {names[func]}")
+        return names[func]
+
+    kernels, starts, ends = [], [], []
+    for i, (kernel, start, end) in enumerate(funcs):
+        z = f"z[zo[{i}] : zo[{i + 1}]]"
+        zd = f"zdot[zo[{i}] : zo[{i + 1}]]"
+        kernels.append(f"    {alias(kernel)}(s, t, q, v, {z}, {zd}, ctx, r{i}, total)")
+        if start is not None:
+            starts.append(f"        {alias(start)}(s, t, q, v, cmd, r{i})")
+        if end is not None:
+            ends.append(f"        {alias(end)}(s, t_new, q_new, v_new, r{i})")
+    stamp_key = frozenset(modules)
+    if stamp_key not in _STAMPS:
+        _STAMPS[stamp_key] = _source_stamp(modules)
+    source = _STEP_SOURCE.substitute(
+        names=", ".join(f"{_kernel_name(k)[0]}.{_kernel_name(k)[1]}" for k, _, _ in funcs)
+        or "none",
+        imports="\n".join(imports),
+        startup=_HOLLOWAY_STARTUP,
+        kernels="\n".join(kernels) or "    pass",
+        starts="\n".join(starts) or "        pass",
+        ends="\n".join(ends) or "        pass",
+        rp="".join(f"r{i}, " for i in range(len(funcs))),
+    )
+    digest = hashlib.sha256((source + _STAMPS[stamp_key]).encode()).hexdigest()[:20]
+    name = f"ship_gym_step_{digest}"
+    path = _cache_dir() / f"{name}.py"
+    if not path.exists():  # written once: numba's cache is keyed by the file's time stamp
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(source, encoding="utf-8")
+        if not path.exists():
+            os.replace(tmp, path)
+        else:
+            tmp.unlink()
+    module = sys.modules.get(name)
+    if module is None:
+        spec = importlib.util.spec_from_file_location(name, path)
+        assert spec is not None and spec.loader is not None
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+    _STEPS[key] = module
+    return module
 
 
 # ============================================================================================
@@ -599,237 +466,56 @@ def _advance_parallel(
 class CompiledBackend:
     """The compiled loop over a :class:`BatchSimulator`'s ships (module docstring).
 
-    Built by :meth:`BatchSimulator.compiled_backend`; shares the simulator's state arrays, the
-    diffraction caches of its :class:`BatchDiffraction` and the actuator states of its
-    :class:`BatchActuatedSurfaces` (views), so the numpy path and this one can be mixed.
+    Built by :meth:`BatchSimulator.compiled_backend`; the models' records hold views of their
+    own per-ship arrays (diffraction caches, actuator states), so the numpy path and this one
+    can be mixed.
 
     Raises
     ------
     NotImplementedError
-        From :meth:`check` when a model has no compiled version (the message names it).
+        When a model has no row kernel (the message names it).
     """
 
     def __init__(self, sim: BatchSimulator) -> None:
-        from ship_gym.engine.batch import (
-            BatchConstantRadiation,
-            BatchDiffraction,
-            BatchFroudeKrylov,
-            BatchStateSpaceRadiation,
-            BatchViscousRoll,
-        )
-
-        self.check(sim)
         self.sim = sim
-        n = sim.n_ships
-        fk = next(f for f in sim.forces if isinstance(f, BatchFroudeKrylov))
-        lay = fk.panels._layout
-        self.hull = HullRecord(
-            _c(lay.body), _c(lay.triangles, np.int64), _c(lay.tri_last, np.int64),
-            _c(lay.tri_first, np.int64), _c(lay.spread), _c(lay.weights), _c(lay.areas),
-            float(fk.rho * fk.g), fk.method == "fast32",
-        )  # fmt: skip
-        radiation_kinds = BatchStateSpaceRadiation | BatchConstantRadiation
-        rad_model = next((f for f in sim.forces if isinstance(f, radiation_kinds)), None)
-        if isinstance(rad_model, BatchStateSpaceRadiation):
-            a, b, c = rad_model.matrices
-            d = rad_model.feedthrough
-            p_inf, p_mem = rad_model.momentum_added_mass, rad_model.momentum_memory
-            cutoff = rad_model.speed_cutoff
-        else:  # constant coefficients (Matusiak 2a/2b): no forward-speed momentum terms
-            a, b, c = np.zeros((0, 0)), np.zeros((0, 6)), np.zeros((6, 0))
-            d = np.zeros((6, 6)) if rad_model is None else rad_model.damping
-            p_inf, p_mem = np.zeros((2, 6)), np.zeros((2, 0))
-            cutoff = 0.0
-        self.radiation = RadiationRecord(
-            sim.forward_speed, *_csr(a), *_csr(b), *_csr(c), _c(d), bool(np.any(d != 0.0)),
-            _c(p_inf), _c(p_mem), float(cutoff),
-        )  # fmt: skip
-        diff = next((f for f in sim.forces if isinstance(f, BatchDiffraction)), None)
-        n_c = sim.n_components
-        if diff is not None:
-            tab = diff.lookup
-            enc, h, tol = diff.encounter, diff.template.heading_step, diff.tolerance
-            correction = diff.speed_correction
-            xd, dxd, ref = diff.caches
-        else:
-            tab = (np.zeros((2, 2, 6), np.complex128), np.arange(2.0), np.arange(1.0, 3.0))
-            enc, h, tol = False, 1e-4, 0.0
-            correction = (np.zeros(4), np.arange(2.0), np.ones((2, 2), np.complex128))
-            xd = np.zeros((n, n_c, CACHE_COLUMNS), np.complex128)
-            dxd, ref = xd.copy(), np.full((n, 2), np.nan)
-        self._diff_static = (diff is not None, *tab)
-        self._diff_rest = (enc, *correction, float(h), float(tol), xd, dxd, ref)
-        # work arrays and refresh counters per ship: ships refresh concurrently in the
-        # parallel loop
-        self._diff_work = (
-            np.zeros((n, 3, n_c, CACHE_COLUMNS), np.complex128),
-            np.zeros(n, np.int64),
-        )
-        visc = next((f for f in sim.forces if isinstance(f, BatchViscousRoll)), None)
-        res = next((f for f in sim.forces if isinstance(f, BatchResistance)), None)
-        pro = next((f for f in sim.forces if isinstance(f, BatchPropeller)), None)
-        self._command_keys: list[str] = []
-        self._command_defaults: list[Any] = []
-        shaft_col = 0
-        if pro is not None:
-            shaft_col = self._column("shaft_speed", pro.default_shaft_speed)
-        kt = (pro.params[:2]) if pro is not None else (np.zeros(4), np.zeros(4))
-        scal = pro.params[2:] if pro is not None else (1.0,) * 10
-        self.propulsion = PropulsionRecord._make((
-            res is not None, _c(res.kernel_parameters() if res else np.zeros(1)),
-            pro is not None, _c(kt[0]), _c(kt[1]), *(float(x) for x in scal), shaft_col,
-            float(visc.b1) if visc else 0.0, float(visc.b2) if visc else 0.0,
-        ))  # fmt: skip
-        man = next((f for f in sim.forces if isinstance(f, BatchHullManoeuvring)), None)
-        if man is not None:
-            p = man.params
-            self.manoeuvring = ManoeuvringRecord(
-                True, float(p[0]), float(p[1]), float(p[2]), float(p[3]), _c(p[4]), _c(p[5]),
-                bool(p[6]), float(p[7]),
-            )  # fmt: skip
-        else:
-            self.manoeuvring = ManoeuvringRecord(
-                False, 0.0, 0.0, 0.0, 0.0, np.zeros(0), np.zeros(0), False, 0.0
-            )
-        self.surfaces = self._surfaces(sim, pro is not None)
-        # a rudder without a propeller takes its slipstream from these commands on the numpy
-        # path (BatchActuatedSurfaces._thrust); the compiled loop knows only the rudder's C_Th
-        has_rudder = any(
-            isinstance(f, BatchActuatedSurfaces) and f.rudder is not None for f in sim.forces
-        )
-        self.numpy_only_commands: frozenset[str] = frozenset(
-            () if pro is not None or not has_rudder
-            else ("propeller_thrust", "propeller_thrust_coefficient")
-        )  # fmt: skip
+        self.parts, layout = self._pack()
+        self.module = step_module(self.parts)
+        """The composed step (:func:`step_module`)."""
+        self._layout = layout
+        self.numpy_only_commands: frozenset[str] = frozenset(layout.numpy_only_commands)
         """Command keys that make a call run on the numpy path (see :meth:`handles_commands`)."""
-        self._records_version = -1
-        self._records_cache: tuple = ()
+        self._records_version = sim.layout_version
+        self._records_cache = self._build_records(layout)
         self._entry: dict[Any, Any] = {}
 
     # ------------------------------------------------------------------ set-up
-    @staticmethod
-    def check(sim: BatchSimulator) -> None:
-        """Raise NotImplementedError naming the first model without a compiled version."""
-        from ship_gym.engine.batch import (
-            BatchConstantRadiation,
-            BatchDiffraction,
-            BatchFroudeKrylov,
-            BatchStateSpaceRadiation,
-            BatchViscousRoll,
-        )
-
-        counts: dict[type, int] = {}
-        groups = 0
+    def _pack(self) -> tuple[list[RowPart], RowLayout]:
+        sim = self.sim
+        layout = RowLayout(sim.n_ships, sim.n_components, sim.forward_speed, sim.seas)
+        parts: list[RowPart] = []
         for f in sim.forces:
-            kind = type(f)
-            counts[kind] = counts.get(kind, 0) + 1
-            if isinstance(f, BatchFroudeKrylov):
-                if f.method == "reference":
-                    raise NotImplementedError("the reference Froude–Krylov kernel is numpy only")
-            elif isinstance(f, BatchDiffraction):
-                if f.template.above_range == "raise":
-                    raise NotImplementedError("Diffraction(above_range='raise') is numpy only")
-            elif isinstance(f, BatchResistance):
-                f.kernel_parameters()  # raises for a curve that is not Holtrop–Mennen
-            elif isinstance(f, BatchActuatedSurfaces):
-                if f.servo is None:
-                    raise NotImplementedError(f"the bare surface group {f.name!r} is numpy only")
-                groups += 1
-            elif not isinstance(
-                f, BatchStateSpaceRadiation | BatchConstantRadiation | BatchViscousRoll
-                | BatchPropeller | BatchHullManoeuvring,
-            ):  # fmt: skip
+            part = f.pack(layout)
+            if part is None:
                 raise NotImplementedError(
                     f"force model {f.name!r} ({type(f).__name__}) has no compiled version"
                 )
-        if counts.get(BatchFroudeKrylov, 0) != 1:
-            raise NotImplementedError("the compiled loop needs exactly one Froude–Krylov model")
-        for kind, k in counts.items():
-            if k > 1 and kind is not BatchActuatedSurfaces:
-                raise NotImplementedError(f"more than one {kind.__name__} model")
-        if groups > _MAX_GROUPS:
-            raise NotImplementedError(f"more than {_MAX_GROUPS} actuated surface groups")
-        radiation_states = sum(
-            int(f.n_states) for f in sim.forces if isinstance(f, BatchStateSpaceRadiation)
-        )
-        if radiation_states != sim.n_states:
-            raise NotImplementedError("only the radiation memory may have ODE states")
+            if int(part.n_states) != int(f.n_states):
+                raise NotImplementedError(
+                    f"force model {f.name!r} packs {part.n_states} states but declares {f.n_states}"
+                )
+            parts.append(part)
+        if not layout.command_keys:
+            layout.column("unused", 0.0)
+        return parts, layout
 
-    def _column(self, key: str, default: Any) -> int:
-        self._command_keys.append(key)
-        self._command_defaults.append(default)
-        return len(self._command_keys) - 1
+    @staticmethod
+    def check(sim: BatchSimulator) -> None:
+        """Raise NotImplementedError naming the first model without a compiled version."""
+        CompiledBackend(sim)
 
-    def _surfaces(self, sim: BatchSimulator, has_propeller: bool) -> SurfacesRecord:
-        groups = [f for f in sim.forces if isinstance(f, BatchActuatedSurfaces)]
-        n, g_n = sim.n_ships, len(groups)
-        geo = [np.concatenate([g.geometry[i] for g in groups]) if groups else None
-               for i in range(13)]  # fmt: skip
-        shapes = ((0, 3),) * 4 + ((0,),) * 9
-        geo = [_c(x) if x is not None else np.zeros(sh) for x, sh in zip(geo, shapes, strict=True)]
-        ptr = np.zeros(g_n + 1, dtype=np.int64)
-        for i, g in enumerate(groups):
-            ptr[i + 1] = ptr[i] + g.geometry[0].shape[0]
-        scal: dict[str, list] = {k: [] for k in (
-            "inflow", "wake", "gamma_v", "gamma_r", "prop_d", "prop_x", "thrust_mode", "c_th",
-            "surface_limit", "max_angle", "max_rate", "lag", "kind", "gains", "ref_col",
-        )}  # fmt: skip
-        states = {k: np.zeros((max(g_n, 1), n)) for k in ("delta", "integral", "t_step")}
-        for k in ("eta_step", "nu_step"):
-            states[k] = np.zeros((max(g_n, 1), n, 6))
-        for i, g in enumerate(groups):
-            assert g.servo is not None  # bare surface groups are refused by _check
-            scal["inflow"].append(g.inflow)
-            scal["wake"].append(g.wake_fraction)
-            scal["gamma_v"].append(g.straightening[0])
-            scal["gamma_r"].append(g.straightening[1])
-            scal["prop_d"].append(g.propeller_geometry[0])
-            scal["prop_x"].append(g.propeller_geometry[1])
-            mode, c_th = 0, 0.0
-            if g.rudder is not None:
-                if has_propeller:
-                    mode = 1
-                elif g.rudder.thrust_coefficient is not None:
-                    mode, c_th = 2, float(g.rudder.thrust_coefficient)
-            scal["thrust_mode"].append(mode)
-            scal["c_th"].append(c_th)
-            scal["surface_limit"].append(g.surface_limit)
-            scal["max_angle"].append(g.servo.max_angle)
-            scal["max_rate"].append(g.servo.max_rate)
-            scal["lag"].append(g.servo.lag)
-            scal["kind"].append(g.kind)
-            scal["gains"].append(g.gains)
-            if g.kind == 1:
-                key = g.controller.heading_key
-                # without a heading command: the heading at each ship's reset
-                scal["ref_col"].append(self._column(key, lambda g=g: g.states.initial_heading))
-            elif g.kind == 0:
-                scal["ref_col"].append(self._column(g.command_key, 0.0))
-            else:
-                scal["ref_col"].append(self._column(f"{g.name}_unused", 0.0))
-            for k in ("delta", "integral", "t_step", "eta_step", "nu_step"):  # share the rows
-                states[k][i] = getattr(g.states, k)
-                setattr(g.states, k, states[k][i])
-        if not self._command_keys:
-            self._column("unused", 0.0)
-        ints = {"inflow", "thrust_mode", "kind", "ref_col"}
-        arrays = {
-            k: _c(v, np.int64) if k in ints else _c(v)
-            for k, v in scal.items() if k != "gains"
-        }  # fmt: skip
-        for k in ints:
-            if g_n == 0:
-                arrays[k] = np.zeros(1, np.int64)
-        for k in arrays:
-            if arrays[k].shape[0] == 0:
-                arrays[k] = np.zeros(1)
-        gains = _c(scal["gains"]) if g_n else np.zeros((1, 4))
-        return SurfacesRecord._make((
-            g_n, ptr, *geo, arrays["inflow"], arrays["wake"], arrays["gamma_v"],
-            arrays["gamma_r"], arrays["prop_d"], arrays["prop_x"], arrays["thrust_mode"],
-            arrays["c_th"], arrays["surface_limit"], arrays["max_angle"], arrays["max_rate"],
-            arrays["lag"], arrays["kind"], gains, arrays["ref_col"], *states.values(),
-        ))  # fmt: skip
+    def record_of(self, kernel: Any) -> tuple | None:
+        """The record of the first model whose row kernel is ``kernel`` (None without one)."""
+        return next((p.record for p in self.parts if p.kernel is kernel), None)
 
     def handles_commands(self) -> bool:
         """Whether the compiled loop reads every command in force the way the numpy path does."""
@@ -844,10 +530,9 @@ class CompiledBackend:
             For a command of the wrong shape or not finite (naming its key).
         """
         sim = self.sim
-        out = np.empty((sim.n_ships, len(self._command_keys)))
-        for j, (key, default) in enumerate(
-            zip(self._command_keys, self._command_defaults, strict=True)
-        ):
+        keys, defaults = self._layout.command_keys, self._layout.command_defaults
+        out = np.empty((sim.n_ships, len(keys)))
+        for j, (key, default) in enumerate(zip(keys, defaults, strict=True)):
             value = sim.commands.get(key, None)
             if value is None:
                 if callable(default):
@@ -867,20 +552,25 @@ class CompiledBackend:
             out[:, j] = arr
         if not np.isfinite(out).all():  # one check for all; name the offending key
             j = int(np.flatnonzero(~np.isfinite(out).all(axis=0))[0])
-            key = self._command_keys[j]
+            key = keys[j]
             raise ValueError(f"commands[{key!r}] must be finite; got {sim.commands.get(key)!r}")
         return out
 
     def _records(self) -> tuple:
-        """(waves, rigid, diffraction) records, rebuilt when a sea or a loading changed."""
+        """(waves, rigid, model records, state offsets, n_shared), rebuilt when a sea or a
+        loading changed (the models are packed again)."""
         if self._records_version != self.sim.layout_version:
-            self._records_cache = self._build_records()
+            parts, layout = self._pack()
+            if [p.kernel for p in parts] != [p.kernel for p in self.parts]:
+                raise AssertionError("a model changed its row kernel between two packings")
+            self.parts, self._layout = parts, layout
+            self._records_cache = self._build_records(layout)
             self._records_version = self.sim.layout_version
         return self._records_cache
 
-    def _build_records(self) -> tuple:
+    def _build_records(self, layout: RowLayout) -> tuple:
         sim = self.sim
-        seas = sim._seas
+        seas = sim.seas
         kxt = seas.kx / _TWO_PI
         kyt = seas.ky / _TWO_PI
         k2 = seas.wavenumber / math.log(2.0)
@@ -889,29 +579,22 @@ class CompiledBackend:
             _c(seas.ramp_time), _c(kxt), _c(kyt), _c(k2), _c(kxt, np.float32),
             _c(kyt, np.float32), _c(k2, np.float32),
         )  # fmt: skip
-        idx = sim._free_idx
-        m_inv = np.zeros((sim.n_ships, 6, 6))
-        m_inv[:, idx[:, None], idx[None, :]] = np.transpose(sim._ship_m_inv_t, (0, 2, 1))
-        rigid = RigidRecord(
-            _c(sim._ship_mass_rb), float(sim._weight), _c(sim._ship_cog),
-            _c(sim._held_angles, np.bool_), _c(m_inv),
-        )  # fmt: skip
-        en, tab, beta, omega_db = self._diff_static
-        diff = DiffractionRecord(
-            en, tab, beta, omega_db, _c(seas.direction), _c(seas.omega), _c(seas.wavenumber),
-            *self._diff_rest, *self._diff_work,
-        )  # fmt: skip
-        return waves, rigid, diff
+        rigid = RigidRecord(*sim.rigid_rows())
+        recs = tuple(p.record for p in self.parts)
+        zo = np.zeros(len(self.parts) + 1, dtype=np.int64)
+        zo[1:] = np.cumsum([int(p.n_states) for p in self.parts], dtype=np.int64)
+        return waves, rigid, recs, zo, len(layout.slots)
 
     # ------------------------------------------------------------------ running
     def _call(self, args: tuple) -> None:
         """Call the compiled loop; after the first call, its compiled entry point directly.
 
-        numba's dispatcher resolves the types of the ≈ 150 record fields at every call (a cost
-        per call: docs/benchmarks.md); the entry point of the specialisation it chose skips that.
+        numba's dispatcher resolves the types of the record fields at every call (a cost per
+        call: docs/benchmarks.md); the entry point of the specialisation it chose skips that.
         Should the argument types ever change (another array layout), the dispatcher is used again.
         """
-        run = _advance_parallel if self.sim.parallel else _advance_serial
+        mod = self.module
+        run = mod.advance_parallel if self.sim.parallel else mod.advance_serial
         entry = self._entry.get(run)
         if entry is not None:
             try:
@@ -922,7 +605,8 @@ class CompiledBackend:
         run(*args)
         overload = run.overloads.get(tuple(nb.typeof(a) for a in args))
         if overload is not None:
-            self._entry[run] = overload.entry_point  # type: ignore[attr-defined]  # numba builds CompileResult's fields from a list
+            # numba builds CompileResult's fields from a list
+            self._entry[run] = overload.entry_point
 
     def advance(
         self, ships: NDArray, n_steps: int, danger: float, cmd: NDArray | None = None
@@ -934,25 +618,21 @@ class CompiledBackend:
         """
         sim = self.sim
         n = sim.n_ships
-        waves, rigid, diff = self._records()
+        waves, rigid, recs, zo, n_shared = self._records()
         if cmd is None:
             cmd = self.command_matrix()
         red_max = np.zeros(n)
         red_sum = np.zeros(n)
         red_danger = np.zeros(n, dtype=np.int64)
         done = np.zeros(n, dtype=np.int64)
-        hist = (
-            sim._v1, sim._v2, sim._a1, sim._a2, sim._qd1, sim._qd2, sim._qdd1, sim._qdd2,
-            sim._zd1, sim._zd2,
-        )  # fmt: skip
+        st = sim.engine_state()
         if ships.dtype != np.int64 or not ships.flags.c_contiguous:
             ships = _c(ships, np.int64)
         args = (
-            ships, int(n_steps), sim.integrator_name == "rk4", float(sim.dt),
-            sim.mu, float(sim.max_abs_velocity), float(danger), sim.t, sim.eta, sim.nu, sim.z,
-            sim._k, sim._pending, hist, self.hull, waves, rigid, self.radiation, diff,
-            self.propulsion, self.manoeuvring, self.surfaces, cmd, red_max, red_sum, red_danger,
-            done,
+            ships, int(n_steps), sim.integrator_name == "rk4", float(sim.dt), sim.mu,
+            float(sim.max_abs_velocity), float(danger), st.t, st.eta, st.nu, st.z, st.k_count,
+            st.pending, st.history, waves, rigid, *recs, zo, n_shared, cmd, red_max, red_sum,
+            red_danger, done,
         )  # fmt: skip
         self._call(args)
         diverged = done < n_steps
@@ -1027,7 +707,8 @@ def _loop_rigid(n, q, v, mass, weight, cog, held_angle, b1, b2):  # pragma: no c
     qdot = np.empty(6)
     for _ in range(n):
         rigid_body_terms(q, v, mass, weight, cog, held_angle, rot, total, qdot)
-        _viscous_roll(v, b1, b2, total)
+        p_roll = v[3]
+        total[3] += -(b1 * p_roll + b2 * abs(p_roll) * p_roll)
     return total
 
 
@@ -1103,7 +784,7 @@ class CompiledShip:
     @property
     def n_refreshes(self) -> int:
         """Diffraction cache refreshes inside the compiled loop since construction."""
-        return int(self.backend._diff_work[1].sum())
+        return sum(int(getattr(f, "refresh_count", 0)) for f in self.sim.forces)
 
     def reset(self, eta: NDArray | None = None, nu: NDArray | None = None, t0: float = 0.0):
         """Restart at ``t0`` from (η, ν) (defaults: the equilibrium, (U, 0, …, 0))."""
@@ -1164,7 +845,7 @@ class CompiledShip:
         import time
 
         b = self.backend
-        waves, rigid, diff = b._records()
+        waves, rigid, _, _, _ = b._records()
         w: list[Any] = [x[0] if np.ndim(x) else float(x[0]) for x in waves]
         amp, omega_t, phase_t, ramp, kxt, kyt, k2, kxt32, kyt32, k232 = w
         n_c = amp.shape[0]
@@ -1177,12 +858,18 @@ class CompiledShip:
         crest = _local_phasors(
             t, q[0], q[1], amp, omega_t, phase_t, ramp, kxt, kyt, mod, offset, local
         )
-        h = b.hull
+        h: Any = b.record_of(froude_krylov_row)
         hull = (h.body, h.tri, h.tri_last, h.tri_first, h.spread, h.weights, h.areas, h.rho_g)
-        r = b.radiation
-        rad = tuple(r)
-        diff_ref = diff.ref[0] if diff.enabled else np.array([q[5], v[0]])
-        p = b.propulsion
+        rad = b.record_of(radiation_row)
+        if rad is None:
+            rad = radiation_record(self.sim.forward_speed, None, None)
+        diff: Any = b.record_of(diffraction_row)
+        visc = b.record_of(viscous_roll_row) or (0.0, 0.0)
+        if diff is not None:
+            xd, dxd, diff_ref = diff.xd[0], diff.dxd[0], diff.ref[0]
+        else:
+            xd = dxd = np.zeros((n_c, 8), np.complex128)
+            diff_ref = np.array([q[5], v[0]])
         jobs = {
             "froude_krylov_hydrostatic": lambda n: _loop_fk(
                 n, *hull, h.single, rot, q[2], kxt, kyt, k2, kxt32, kyt32, k232, mod, offset,
@@ -1193,16 +880,14 @@ class CompiledShip:
                 local.copy(),
             ),
             "radiation": lambda n: _loop_radiation(n, v, self.z.copy(), *rad),
-            "diffraction": lambda n: _loop_diffraction(
-                n, q[5], v[0], local, diff.xd[0], diff.dxd[0], diff_ref
-            ),
+            "diffraction": lambda n: _loop_diffraction(n, q[5], v[0], local, xd, dxd, diff_ref),
             "rigid_body_viscous_roll": lambda n: _loop_rigid(
-                n, q, v, mass, weight, cog, held, p.viscous_b1, p.viscous_b2
+                n, q, v, mass, weight, cog, held, visc[0], visc[1]
             ),
         }  # fmt: skip
         out: dict[str, float] = {}
         for name, job in jobs.items():
-            if name == "diffraction" and not diff.enabled:
+            if name == "diffraction" and diff is None:
                 out[name] = 0.0
                 continue
             job(1)  # compile

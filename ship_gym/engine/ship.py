@@ -50,6 +50,7 @@ from ship_gym.forces.propeller import Propeller
 from ship_gym.forces.radiation import ConstantCoefficientRadiation, RadiationMemory
 from ship_gym.forces.resistance import CalmWaterResistance
 from ship_gym.forces.viscous import BilgeKeel, ViscousRollDamping
+from ship_gym.forces.wind import MeanWind
 from ship_gym.hull import equilibrium, hydrostatics
 from ship_gym.hull.hull import Hull
 from ship_gym.hydro import load_database
@@ -149,6 +150,10 @@ class ShipSetup:
         zero-speed force at the wave frequency without it — the model of issue #13, whose
         radiated momentum alone pitches a ship at speed in beam and quartering seas; kept for
         the ``-v2`` environments and comparisons.
+    wind : (float, float) or None
+        A constant mean wind (V_w [m/s], χ_w [rad], the earth direction it blows from; the
+        ship starts heading north, χ_w = 0) on the windage of the ship's ``[wind]`` table
+        (:class:`ship_gym.forces.wind.MeanWind`, Blendermann's coefficients). None: no wind.
     """
 
     hull: str = "s175"
@@ -172,6 +177,7 @@ class ShipSetup:
     speed_terms: SpeedTerms = "vertical"
     speed_cutoff: float | None = None
     diffraction_speed_terms: bool = True
+    wind: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         if self.manoeuvring is None:
@@ -204,6 +210,13 @@ class ShipSetup:
             raise ValueError(f"speed must be a non-negative speed [m/s], got {self.speed!r}")
         if len(self.free_dofs) != 6:
             raise ValueError(f"free_dofs must have 6 entries, got {self.free_dofs!r}")
+        if self.wind is not None:
+            if len(self.wind) != 2 or not all(np.isfinite(x) for x in self.wind):
+                raise ValueError(
+                    f"wind must be (speed [m/s], direction it blows from [rad]), got {self.wind!r}"
+                )
+            if self.wind[0] < 0.0:
+                raise ValueError(f"wind speed must be >= 0 [m/s], got {self.wind[0]!r}")
 
 
 Sea = RegularWave | IrregularSea | None
@@ -403,6 +416,9 @@ def build_force_models(
                 hull, omega=omega_roll, forward_speed=setup.speed, bilge_keel=keel
             )
         )
+    if setup.wind is not None and setup.wind[0] > 0.0:
+        speed, direction = setup.wind
+        models.append(MeanWind(ship_of(setup).windage(), float(speed), float(direction)))
     control, commands = _control_models(setup, hull, database, models)
     return [*models, *control], commands
 

@@ -129,6 +129,15 @@ class ShipConfig:
     num_threads: int = argument(
         1, "-", "numba threads over the batch's ships (1: serial)", (1, 1024)
     )
+    wind_speed_mps: float = argument(
+        0.0, "m/s", "constant mean wind speed on the ship's windage (0: none)", (0.0, 80.0)
+    )
+    wind_from_deg: float = argument(
+        0.0,
+        "deg",
+        "earth direction the wind blows from (0: north, ahead at the start)",
+        (-360.0, 360.0),
+    )
     capsize_angle_deg: float | None = argument(
         None, "deg", "capsize roll angle (None: vanishing angle of the loading)", (0.0, 180.0)
     )

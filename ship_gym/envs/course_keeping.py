@@ -83,6 +83,8 @@ class CourseKeepingTask(ShipEnvTask):
         hull_mesh: Sequence[int] = S175_MESH,
         precision: Precision = "float32",
         forward_speed_model: ForwardSpeedModel = "relative_motion",
+        wind_speed_mps: float = 0.0,
+        wind_from_deg: float = 0.0,
         num_threads: int = 1,
         capsize_angle_deg: float | None = None,
         dangerous_roll_deg: float = 25.0,

@@ -107,6 +107,7 @@ def task_setup(
     kg: float | None,
     precision: Precision = "float32",
     forward_speed_model: ForwardSpeedModel = "relative_motion",
+    wind: tuple[float, float] | None = None,
 ) -> ShipSetup:
     """The setup of the ship tasks: state-space radiation memory, diffraction, Ikeda roll
     damping, propulsion (Holtrop resistance + B-series propeller), manoeuvring forces and a
@@ -135,6 +136,8 @@ def task_setup(
         The speed terms on the motion relative to the incident flow (default), or on the
         radiated momentum only, without the moment's high-pass (the ``-v2`` environments;
         :data:`FORWARD_SPEED_MODELS`).
+    wind : (float, float) or None
+        A constant mean wind (V_w [m/s], χ_w [rad] it blows from) (:attr:`ShipSetup.wind`).
     """
     from ship_gym.engine.ship import ShipSetup
     from ship_gym.ship import load_ship
@@ -201,6 +204,7 @@ def task_setup(
         manoeuvring=True,
         rudder=rudder,
         fk_method="fast32" if precision == "float32" else "fast",
+        wind=wind,
         **forward_speed_fields(forward_speed_model),
     )
 
@@ -289,6 +293,10 @@ class ShipEnvTask(ShipTask, abc.ABC):
         :func:`task_setup` arguments (ship, Fn [-], dt [s], scheme, mesh, KG [m], wave sums).
     forward_speed_model : {"relative_motion", "radiation_only"}
         :func:`task_setup`'s forward-speed model.
+    wind_speed_mps, wind_from_deg : float
+        A constant mean wind V_w [m/s] from the earth direction χ_w [deg] (0: from the north,
+        ahead of the ship at its start) on the ship's windage (``[wind]`` of its ship file;
+        :class:`ship_gym.forces.wind.MeanWind`); 0 m/s: none.
     num_threads : int
         numba threads over the ships in the compiled loop (1: serial).
     control_dt_s : float
@@ -331,7 +339,11 @@ class ShipEnvTask(ShipTask, abc.ABC):
         extra_observations: Sequence[tuple[str, float, float] | Observation] = (),
         ship: str = "s175",
         forward_speed_model: ForwardSpeedModel = "relative_motion",
+        wind_speed_mps: float = 0.0,
+        wind_from_deg: float = 0.0,
     ) -> None:
+        wind_speed = check_real("wind_speed_mps", wind_speed_mps, low=0.0, high=80.0, unit="m/s")
+        wind_from = check_real("wind_from_deg", wind_from_deg, low=-360.0, high=360.0, unit="deg")
         setup = task_setup(
             ship=ship,
             froude_number=froude_number,
@@ -342,6 +354,7 @@ class ShipEnvTask(ShipTask, abc.ABC):
             kg=kg_m,
             precision=precision,
             forward_speed_model=forward_speed_model,
+            wind=(wind_speed, math.radians(wind_from)) if wind_speed > 0.0 else None,
         )
         if not (
             isinstance(num_threads, int | np.integer)

@@ -119,7 +119,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numba as nb
 import numpy as np
@@ -723,3 +723,53 @@ def diffraction_force(psi, u, local, xd, dxd, diff_ref, total):  # pragma: no co
             total[PITCH] += u * s
         else:
             total[YAW] += u * s
+
+
+class DiffractionRecord(NamedTuple):
+    """The diffraction table, the seas of the ships (N, n_c) and the per-ship caches.
+
+    ``table, beta_ext, omega_db`` the look-up (:func:`transfer_element`); ``direction, omega,
+    wavenumber`` χⱼ [rad], ωⱼ [rad/s], kⱼ [rad/m] per ship; ``kirchhoff, mass_grid,
+    complex_mass`` the speed correction; ``step`` h [rad] of ∂X_D/∂ψ; ``tolerance`` [rad] of the
+    heading cache; ``speed`` U [m/s] for a cache without a reset speed; ``xd, dxd`` (N, n_c, 8)
+    and ``ref`` (N, 2) the caches; ``work`` (N, 3, n_c, 8) and ``refresh_count`` (N,) per ship
+    (ships refresh concurrently in the parallel loop)."""
+
+    table: NDArray
+    beta_ext: NDArray
+    omega_db: NDArray
+    direction: NDArray
+    omega: NDArray
+    wavenumber: NDArray
+    encounter: bool
+    kirchhoff: NDArray
+    mass_grid: NDArray
+    complex_mass: NDArray
+    step: float
+    tolerance: float
+    speed: float
+    xd: NDArray
+    dxd: NDArray
+    ref: NDArray
+    work: NDArray
+    refresh_count: NDArray
+
+
+@nb.njit(cache=True, nogil=True)
+def diffraction_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
+    """Row kernel: refresh ship s's heading cache when ψ moved more than the tolerance from
+    its reference (:func:`refresh_diffraction_cache`, at the ship's speed at its reset, U
+    without one), then add :func:`diffraction_force` with the component phasors at O."""
+    psi = q[5]
+    ref = rec.ref[s, 0]
+    if np.isnan(ref) or abs(wrap_angle_scalar(psi - ref)) > rec.tolerance:
+        dtab = (
+            rec.table, rec.beta_ext, rec.omega_db, rec.direction[s], rec.omega[s],
+            rec.wavenumber[s], rec.encounter, rec.kirchhoff, rec.mass_grid, rec.complex_mass,
+            rec.step, False, rec.work[s], rec.refresh_count[s : s + 1],
+        )  # fmt: skip
+        speed = rec.ref[s, 1]  # U_s: the ship's speed at its reset
+        if np.isnan(speed):
+            speed = rec.speed
+        refresh_diffraction_cache(psi, speed, dtab, rec.xd[s], rec.dxd[s], rec.ref[s])
+    diffraction_force(psi, v[0], ctx.local, rec.xd[s], rec.dxd[s], rec.ref[s], out)

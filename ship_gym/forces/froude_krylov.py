@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numba as nb
 import numpy as np
@@ -1325,3 +1325,59 @@ class FroudeKrylovHydrostatics(ForceModel):
 
 
 _NO_STATES = np.zeros(0)
+
+
+# =============================================================================================
+# row kernel of the compiled path (protocol: ship_gym.forces.base.RowPart)
+# =============================================================================================
+class FroudeKrylovRecord(NamedTuple):
+    """The kernel's hull layout (:class:`_KernelLayout`), ρg [N/m³] and the wave-sum precision."""
+
+    body: np.ndarray
+    tri: np.ndarray
+    tri_last: np.ndarray
+    tri_first: np.ndarray
+    spread: np.ndarray
+    weights: np.ndarray
+    areas: np.ndarray
+    rho_g: float
+    single: bool
+
+
+def froude_krylov_record(layout: _KernelLayout, rho_g: float, single: bool) -> FroudeKrylovRecord:
+    """The record of :func:`froude_krylov_row` for a hull layout (contiguous arrays)."""
+
+    def c(a, dtype=np.float64):
+        return np.ascontiguousarray(a, dtype=dtype)
+
+    return FroudeKrylovRecord(
+        c(layout.body), c(layout.triangles, np.int64), c(layout.tri_last, np.int64),
+        c(layout.tri_first, np.int64), c(layout.spread), c(layout.weights), c(layout.areas),
+        float(rho_g), bool(single),
+    )  # fmt: skip
+
+
+@nb.njit(cache=True, nogil=True)
+def froude_krylov_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
+    """Row kernel: Froude–Krylov + hydrostatic force on the instantaneous wetted hull of ship s
+    (:func:`_fk_core`, or :func:`_fk_core_f32` with float32 wave sums), earth axes, turned into
+    body axes, Fᵇ = Rᵀ Fᵉ, and added to ``out`` [N, N·m]."""
+    fe = np.zeros(6)
+    w = ctx.waves
+    rot = ctx.rot
+    if rec.single:
+        _fk_core_f32(
+            rec.body, rec.tri, rec.tri_last, rec.tri_first, rec.spread, rec.weights, rec.areas,
+            rot, q[2], w.kxt32[s], w.kyt32[s], w.k232[s], ctx.mod.astype(np.float32),
+            ctx.offset.astype(np.float32), ctx.shared[0], rec.rho_g, fe,
+        )  # fmt: skip
+    else:
+        _fk_core(
+            rec.body, rec.tri, rec.tri_last, rec.tri_first, rec.spread, rec.weights, rec.areas,
+            rot, q[2], w.kxt[s], w.kyt[s], w.k2[s], ctx.mod, ctx.offset, ctx.shared[0],
+            rec.rho_g, fe,
+        )  # fmt: skip
+    for i in range(3):
+        out[i] += rot[0, i] * fe[0] + rot[1, i] * fe[1] + rot[2, i] * fe[2]
+    for i in range(3):
+        out[3 + i] += rot[0, i] * fe[3] + rot[1, i] * fe[4] + rot[2, i] * fe[5]

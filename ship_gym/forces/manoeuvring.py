@@ -544,3 +544,13 @@ def manoeuvring_force(nu, c_yv, c_yr, c_nv, c_nr, cda, x, crossflow, roll_lever,
     out[3] = -roll_lever * y
     out[4] = 0.0
     out[5] = n
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def manoeuvring_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
+    """Row kernel: :func:`manoeuvring_force` with ``rec`` the tuple of
+    :meth:`HullManoeuvring.kernel_parameters`."""
+    work = ctx.work
+    manoeuvring_force(v, rec[0], rec[1], rec[2], rec[3], rec[4], rec[5], rec[6], rec[7], work)
+    for i in range(6):
+        out[i] += work[i]

@@ -103,7 +103,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, NamedTuple
 
 import numba as nb
 import numpy as np
@@ -1172,3 +1172,37 @@ def propeller_force(
     out[4] = z_p * x
     out[5] = -y_p * x
     return thrust
+
+
+class PropellerRecord(NamedTuple):
+    """:func:`propeller_force`'s parameters after (u, n), the shaft-speed command's column and
+    the shared slot that receives the open-water thrust T [N] (the rudder's slipstream)."""
+
+    kt_c: FloatArray
+    kq_c: FloatArray
+    j0: float
+    diameter: float
+    rho_d4: float
+    one_minus_w: float
+    one_minus_t: float
+    eta_r: float
+    astern: float
+    z_p: float
+    y_p: float
+    roll_sign: float
+    shaft_col: int
+    thrust_slot: int
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def propeller_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
+    """Row kernel: :func:`propeller_force` at the shaft speed n = cmd[s, shaft_col] [rev/s];
+    T goes to ``ctx.shared[thrust_slot]``."""
+    work = ctx.work
+    ctx.shared[rec.thrust_slot] = propeller_force(
+        v[0], ctx.cmd[s, rec.shaft_col], rec.kt_c, rec.kq_c, rec.j0, rec.diameter, rec.rho_d4,
+        rec.one_minus_w, rec.one_minus_t, rec.eta_r, rec.astern, rec.z_p, rec.y_p,
+        rec.roll_sign, work,
+    )  # fmt: skip
+    for i in range(6):
+        out[i] += work[i]

@@ -55,7 +55,7 @@ import hashlib
 import math
 import warnings
 from collections.abc import Mapping
-from typing import Any, Literal
+from typing import Any, Literal, NamedTuple
 
 import numba as nb
 import numpy as np
@@ -970,3 +970,78 @@ def state_space_radiation(
             for j in range(6):
                 f -= vp[j] * d_mat[o, j]
         total[o] += f
+
+
+class RadiationRecord(NamedTuple):
+    """:func:`state_space_radiation`'s parameters: U [m/s], A, B, C in CSR form, D (6, 6) (the
+    constant coefficients B_c of 2a/2b: no states), the momentum rows and ω_c [rad/s]."""
+
+    speed: float
+    a_ptr: NDArray
+    a_idx: NDArray
+    a_val: NDArray
+    b_ptr: NDArray
+    b_idx: NDArray
+    b_val: NDArray
+    c_ptr: NDArray
+    c_idx: NDArray
+    c_val: NDArray
+    d_mat: NDArray
+    has_d: bool
+    p_inf: NDArray
+    p_mem: NDArray
+    cutoff: float
+
+
+def _csr_arrays(matrix: NDArray) -> tuple[NDArray, NDArray, NDArray]:
+    m = np.asarray(matrix, dtype=float)
+    rows, cols = np.nonzero(m)
+    ptr = np.zeros(m.shape[0] + 1, dtype=np.int64)
+    np.add.at(ptr, rows + 1, 1)
+    c = np.ascontiguousarray
+    return c(np.cumsum(ptr), np.int64), c(cols, np.int64), c(m[rows, cols], float)
+
+
+def radiation_record(
+    speed: float,
+    matrices: tuple[NDArray, NDArray, NDArray] | None,
+    feedthrough: NDArray | None,
+    momentum: tuple[NDArray, NDArray] | None = None,
+    cutoff: float = 0.0,
+) -> RadiationRecord:
+    """The record of :func:`radiation_row`.
+
+    Parameters
+    ----------
+    speed : float
+        U [m/s].
+    matrices : (A, B, C) or None
+        The state-space realisation (None: constant coefficients, no states).
+    feedthrough : numpy.ndarray or None
+        (6, 6) D (or B_c of 2a/2b) [N·s/m, …].
+    momentum : (p_inf, p_mem), optional
+        (2, 6) and (2, n) pitch and yaw rows of Lᵀ A(∞) and Lᵀ C A⁻¹.
+    cutoff : float
+        ω_c [rad/s] of the momentum's high-pass (0: none).
+    """
+    if matrices is None:
+        matrices = (np.zeros((0, 0)), np.zeros((0, 6)), np.zeros((6, 0)))
+    d = np.zeros((6, 6)) if feedthrough is None else np.asarray(feedthrough, dtype=float)
+    if momentum is None:
+        momentum = (np.zeros((2, 6)), np.zeros((2, 0)))
+    c = np.ascontiguousarray
+    return RadiationRecord(
+        float(speed), *_csr_arrays(matrices[0]), *_csr_arrays(matrices[1]),
+        *_csr_arrays(matrices[2]), c(d, float), bool(np.any(d != 0.0)), c(momentum[0], float),
+        c(momentum[1], float), float(cutoff),
+    )  # fmt: skip
+
+
+@nb.njit(cache=True, nogil=True)
+def radiation_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
+    """Row kernel: :func:`state_space_radiation` with the record's parameters."""
+    state_space_radiation(
+        v, z, rec.speed, rec.a_ptr, rec.a_idx, rec.a_val, rec.b_ptr, rec.b_idx, rec.b_val,
+        rec.c_ptr, rec.c_idx, rec.c_val, rec.d_mat, rec.has_d, rec.p_inf, rec.p_mem, rec.cutoff,
+        out, zdot,
+    )  # fmt: skip

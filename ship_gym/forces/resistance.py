@@ -1302,3 +1302,12 @@ __all__ = [
     "resistance_curve",
     "reynolds_number",
 ]
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def resistance_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
+    """Row kernel: X = −R_T(|u|) sign(u) [N] (Holtrop–Mennen, :func:`holtrop_total`), ``rec``
+    a 1-tuple of the parameter array of :meth:`CalmWaterResistance.kernel_parameters`."""
+    u = v[0]
+    if u != 0.0:
+        out[0] += -math.copysign(holtrop_total(rec[0], abs(u)), u)

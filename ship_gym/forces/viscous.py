@@ -92,6 +92,7 @@ import warnings
 from dataclasses import dataclass, field
 from typing import Literal
 
+import numba as nb
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -933,3 +934,13 @@ __all__ = [
     "midship_section_area",
     "nondimensional_roll_damping",
 ]
+
+
+# =============================================================================================
+# row kernel of the compiled path (protocol: ship_gym.forces.base.RowPart)
+# =============================================================================================
+@nb.njit(cache=True, nogil=True, inline="always")
+def viscous_roll_row(s, t, q, v, z, zdot, ctx, rec, out):  # pragma: no cover - compiled
+    """Row kernel: the roll moment −(B₁ p + B₂ |p| p) [N·m] (eq. 1), ``rec = (B₁, B₂)``."""
+    p_roll = v[3]
+    out[3] += -(rec[0] * p_roll + rec[1] * abs(p_roll) * p_roll)

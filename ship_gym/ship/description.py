@@ -65,7 +65,11 @@ Appendage keys (all optional; units in the names):
   ``wake_fraction``, ``thrust_deduction`` (one propeller on the centreline: a twin-screw ship
   is modelled by one propeller delivering the whole thrust);
 * ``[fins]``: ``fitted``, ``area_m2``, ``span_m``, ``x_m``, ``y_m``, ``z_m``, ``max_angle_deg``;
-* ``[t_foil]``: ``fitted``, ``area_m2``, ``span_m``, ``x_m``, ``z_m``, ``max_angle_deg``.
+* ``[t_foil]``: ``fitted``, ``area_m2``, ``span_m``, ``x_m``, ``z_m``, ``max_angle_deg``;
+* ``[wind]``: the windage of :class:`ship_gym.forces.wind.Windage`: ``frontal_area_m2``,
+  ``lateral_area_m2``, ``centroid_height_m``, ``centroid_x_m``, ``length_overall_m`` and
+  Blendermann's ``cdt``, ``cdl_af_ahead``, ``cdl_af_astern``, ``delta``, ``kappa`` (defaults:
+  a loaded container ship).
 """
 
 from __future__ import annotations
@@ -236,7 +240,7 @@ class ShipDescription:
         Loading condition.
     speed : SpeedSpec
         Service speed and range.
-    rudder, propeller, fins, t_foil : tuple of (str, object)
+    rudder, propeller, fins, t_foil, wind : tuple of (str, object)
         Appendage fields as written (sorted items; empty: estimated).
     hydrodynamics : HydrodynamicsSpec
         Database settings.
@@ -255,6 +259,7 @@ class ShipDescription:
     propeller: tuple[tuple[str, Any], ...] = ()
     fins: tuple[tuple[str, Any], ...] = ()
     t_foil: tuple[tuple[str, Any], ...] = ()
+    wind: tuple[tuple[str, Any], ...] = ()
     hydrodynamics: HydrodynamicsSpec = field(default_factory=HydrodynamicsSpec)
     digest: str = ""
 
@@ -276,6 +281,7 @@ _TOP_KEYS: Final = {
     "propeller",
     "fins",
     "t_foil",
+    "wind",
     "hydrodynamics",
 }
 _HULL_KEYS: Final = {"library", "mesh", "offsets", "options", "format", "frame", "scale",
@@ -324,6 +330,18 @@ APPENDAGE_FIELDS: Final[dict[str, dict[str, tuple[str, float, float]]]] = {
         "x_m": ("coordinate", -math.inf, math.inf),
         "z_m": ("coordinate", -math.inf, math.inf),
         "max_angle_deg": ("number", 1.0, 45.0),
+    },
+    "wind": {
+        "frontal_area_m2": ("positive", 0.0, math.inf),
+        "lateral_area_m2": ("positive", 0.0, math.inf),
+        "centroid_height_m": ("coordinate", -math.inf, math.inf),
+        "centroid_x_m": ("coordinate", -math.inf, math.inf),
+        "length_overall_m": ("positive", 0.0, math.inf),
+        "cdt": ("positive", 0.0, 3.0),
+        "cdl_af_ahead": ("number", 0.0, 3.0),
+        "cdl_af_astern": ("number", 0.0, 3.0),
+        "delta": ("number", 0.0, 1.0),
+        "kappa": ("number", 0.0, 5.0),
     },
 }
 """Allowed fields of each appendage table: (kind, lower, upper bound)."""

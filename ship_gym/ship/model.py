@@ -56,6 +56,7 @@ if TYPE_CHECKING:
     from ship_gym.forces.fins import RollFins, TFoil
     from ship_gym.forces.propeller import Propeller
     from ship_gym.forces.rudder import Rudder
+    from ship_gym.forces.wind import Windage
     from ship_gym.hull.hull import Hull
     from ship_gym.hull.mass import MassProperties
     from ship_gym.hull.mesh import PanelMesh
@@ -159,6 +160,25 @@ class Ship:
         if self.fins_arguments is None:
             raise ValueError(f"ship {self.name!r} has no roll fins ([fins] fitted = false)")
         return RollFins(**self.fins_arguments)
+
+    def windage(self) -> Windage:
+        """The ship's windage (its ``[wind]`` table; :class:`ValueError` without one)."""
+        from ship_gym.forces.wind import Windage
+
+        table = self.description.appendage("wind")
+        if not table:
+            raise ValueError(
+                f"ship {self.name!r} has no [wind] table: write its windage (frontal_area_m2, "
+                "lateral_area_m2, centroid_height_m, centroid_x_m, length_overall_m) in its ship "
+                "file to use wind"
+            )
+        names = {"frontal_area_m2": "frontal_area", "lateral_area_m2": "lateral_area",
+                 "centroid_height_m": "centroid_height", "centroid_x_m": "centroid_x",
+                 "length_overall_m": "length_overall"}  # fmt: skip
+        try:
+            return Windage(**{names.get(k, k): float(v) for k, v in table.items()})
+        except TypeError as exc:
+            raise ValueError(f"ship {self.name!r}: [wind] table incomplete ({exc})") from None
 
     def t_foil(self) -> TFoil:
         """The ship's T-foil (:class:`ValueError` if it has none)."""

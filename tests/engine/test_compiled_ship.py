@@ -169,14 +169,15 @@ def test_compiled_diffraction_refresh_equals_the_models_look_up(speed):
     # (encounter frequencies, some beyond the table: zero, some negative: conjugated)
     from ship_gym.engine.batch import BatchDiffraction
     from ship_gym.engine.compiled import refresh_diffraction_cache
+    from ship_gym.forces.diffraction import diffraction_row
 
     ship = build_compiled_ship(ShipSetup(integrator="holloway", speed=speed), _field())
-    model = next(f for f in ship.sim.forces if isinstance(f, BatchDiffraction)).template
+    batch_model = next(f for f in ship.sim.forces if isinstance(f, BatchDiffraction))
+    model = batch_model.template
     w = ship.wave_field
     n_c = w.n_components
-    b = ship.backend
-    en, table, beta, omega_db = b._diff_static
-    assert en
+    assert ship.backend.record_of(diffraction_row) is not None  # diffraction runs compiled
+    table, beta, omega_db = batch_model.lookup
     tables = (
         table, beta, omega_db, np.ascontiguousarray(w.direction), np.ascontiguousarray(w.omega),
         np.ascontiguousarray(w.wavenumber), model.frequency == "encounter", model.kirchhoff,
