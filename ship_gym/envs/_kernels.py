@@ -1,4 +1,5 @@
-"""NumPy's ``np.clip`` of one value as numba functions (for the environments' per-step kernels).
+"""NumPy's ``np.clip`` of one value as numba functions (for the environments' per-step kernels),
+and the distance along a voyage course of the voyage tasks.
 
 NumPy 2 clips with two loops that treat a value equal to a bound differently, which shows only
 for signed zeros (−0.0 against a bound of 0.0): with scalar bounds it keeps the value, with array
@@ -12,7 +13,7 @@ import math
 
 import numba
 
-__all__ = ["clip_array_bound", "clip_scalar_bound"]
+__all__ = ["along_course_kernel", "clip_array_bound", "clip_scalar_bound"]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -32,3 +33,12 @@ def clip_array_bound(v: float, low: float, high: float) -> float:  # pragma: no 
     if v == v:
         v = v if v < high else high
     return v
+
+
+@numba.njit(cache=True, nogil=True)
+def along_course_kernel(eta, origin, cos_c, sin_c, weight, scale, out):  # pragma: no cover
+    """out = weight · ((x − x₀) cos c + (y − y₀) sin c) / scale (x − 0.0 is x: with a zero
+    origin and weight = scale = 1 it is the distance of O along the course, bit for bit)."""
+    for i in range(eta.shape[0]):
+        along = (eta[i, 0] - origin[i, 0]) * cos_c + (eta[i, 1] - origin[i, 1]) * sin_c
+        out[i] = weight * along / scale

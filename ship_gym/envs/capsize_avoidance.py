@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ship_gym.conventions import GRAVITY
-from ship_gym.envs._kernels import clip_array_bound, clip_scalar_bound
+from ship_gym.envs._kernels import along_course_kernel, clip_array_bound, clip_scalar_bound
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
 from ship_gym.envs.docstrings import (
     FORWARD_SPEED_V3,
@@ -62,15 +62,6 @@ ship's default is this range × Lpp/175."""
 
 
 _TWO_PI = 2.0 * math.pi
-
-
-@numba.njit(cache=True, nogil=True)
-def _along_course_kernel(eta, origin, cos_c, sin_c, weight, scale, out):  # pragma: no cover
-    """out = weight · ((x − x₀) cos c + (y − y₀) sin c) / scale (x − 0.0 is x: with a zero
-    origin and weight = scale = 1 it is the distance of O along the course, bit for bit)."""
-    for i in range(eta.shape[0]):
-        along = (eta[i, 0] - origin[i, 0]) * cos_c + (eta[i, 1] - origin[i, 1]) * sin_c
-        out[i] = weight * along / scale
 
 
 @numba.njit(cache=True, nogil=True)
@@ -295,7 +286,7 @@ class CapsizeAvoidanceTask(ShipEnvTask):
         """weight · (distance of O from ``origin`` along the voyage course) / scale, (N,)."""
         out = np.empty(self.num_envs)
         c = self.voyage_course
-        _along_course_kernel(self.sim.eta, origin, math.cos(c), math.sin(c), weight, scale, out)
+        along_course_kernel(self.sim.eta, origin, math.cos(c), math.sin(c), weight, scale, out)
         return out
 
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:

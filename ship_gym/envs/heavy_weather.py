@@ -29,7 +29,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ship_gym.conventions import GRAVITY
+from ship_gym.conventions import GRAVITY, wrap_angle
+from ship_gym.envs._kernels import along_course_kernel
 from ship_gym.envs.base import TaskEnv, TaskVectorEnv
 from ship_gym.envs.docstrings import env_docstring, vector_env_docstring
 from ship_gym.envs.env_task import S175_MESH, ShipEnvTask, ship_kwargs, ship_particulars
@@ -37,7 +38,6 @@ from ship_gym.envs.registration import max_episode_steps
 from ship_gym.envs.seas import HEADING_LIMITS, HEIGHT_LIMITS, PERIOD_LIMITS, SeaSampler
 from ship_gym.envs.ship_task import StepStatistics
 from ship_gym.envs.validation import check_positive, check_range, check_real, check_weight
-from ship_gym.numerics.angles import wrap_angle_scalar
 from ship_gym.typing import ForwardSpeedModel, IntegratorName, Precision
 from ship_gym.waves.sea_state import irregular_steepness_limit
 
@@ -356,8 +356,8 @@ class HeavyWeatherTask(ShipEnvTask):
     def _write_extra_observations(self, out: NDArray) -> None:
         psi = self.sim.eta[:, 5]
         c = self.voyage_course
-        out[:, 0] = [wrap_angle_scalar(float(x) - c) for x in psi]
-        out[:, 1] = [wrap_angle_scalar(float(x) - c) for x in self.heading_setpoint]
+        out[:, 0] = wrap_angle(psi - c)
+        out[:, 1] = wrap_angle(self.heading_setpoint - c)
         out[:, 2] = self.telegraph
         out[:, 3:8] = self._sea_rows
         out[:, 8] = self._roll_period
@@ -369,9 +369,8 @@ class HeavyWeatherTask(ShipEnvTask):
     def _reward_terms(self, stats: StepStatistics) -> dict[str, NDArray]:
         c = self.voyage_course
         eta = self.sim.eta
-        step = (eta[:, 0] - stats.position_before[:, 0]) * math.cos(c) + (
-            eta[:, 1] - stats.position_before[:, 1]
-        ) * math.sin(c)
+        step = np.empty(self.num_envs)  # distance made good along the course [m]
+        along_course_kernel(eta, stats.position_before, math.cos(c), math.sin(c), 1.0, 1.0, step)
         alive = ~stats.capsized | stats.newly_capsized
         self._distance += np.where(alive, step, 0.0)
         # the bridge's running statistics (time constant roll_statistics_time_s)
